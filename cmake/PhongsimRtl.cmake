@@ -1,0 +1,83 @@
+# What each pipeline's RTL is made of, and how one configuration of it becomes a plugin (a shared
+# module the phongsim tools dlopen, see sim/rtl_library.h). Used by the main build for configs/
+# and by sim/rtl_build/ for configurations Verilated on demand, so both build the same way.
+#
+# Requires PHONGSIM_SOURCE_DIR and PHONGSIM_PYTHON to be set, and verilator, fmt, ZLIB and
+# Threads to be found.
+
+set(PHONGSIM_RTL_COMMON
+    rtl/common/fx_pkg.sv
+    rtl/common/fx_resize.sv
+    rtl/common/fx_add.sv
+    rtl/common/fx_sub.sv
+    rtl/common/fx_mul.sv
+    rtl/common/fx_neg.sv
+    rtl/common/stream_register.sv
+    rtl/common/stream_skid.sv)
+
+# Per pipeline: top module and its sources (package first).
+set(PHONGSIM_RTL_lirp_TOP lirp_unit)
+set(PHONGSIM_RTL_lirp_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_unit.sv)
+
+set(PHONGSIM_PIPELINES lirp)
+
+# phongsim_rtl_sources(<pipeline> <out-var>): absolute paths of the pipeline's RTL sources.
+function(phongsim_rtl_sources PIPELINE OUT)
+  if(NOT DEFINED PHONGSIM_RTL_${PIPELINE}_TOP)
+    message(FATAL_ERROR "unknown pipeline '${PIPELINE}' (known: ${PHONGSIM_PIPELINES})")
+  endif()
+  set(files)
+  foreach(f IN LISTS PHONGSIM_RTL_${PIPELINE}_SOURCES)
+    list(APPEND files "${PHONGSIM_SOURCE_DIR}/${f}")
+  endforeach()
+  set(${OUT} ${files} PARENT_SCOPE)
+endfunction()
+
+# phongsim_config_gflags(<config.toml> <out-var>): the configuration's -G parameters as a list.
+function(phongsim_config_gflags CONFIG OUT)
+  execute_process(
+    COMMAND "${PHONGSIM_PYTHON}" "${PHONGSIM_SOURCE_DIR}/scripts/config_gflags.py" "${CONFIG}"
+    OUTPUT_VARIABLE flags
+    ERROR_VARIABLE err
+    RESULT_VARIABLE rc
+    OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(rc)
+    message(FATAL_ERROR "${err}")
+  endif()
+  string(REPLACE "\n" ";" flags "${flags}")
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+               "${CONFIG}" "${PHONGSIM_SOURCE_DIR}/scripts/config_gflags.py")
+  set(${OUT} ${flags} PARENT_SCOPE)
+endfunction()
+
+# phongsim_add_rtl_plugin(<target> <pipeline> <config.toml> <output-dir>): Verilates the
+# pipeline's top with the configuration's parameters into <output-dir>/<target>.so.
+# Sets <target>_GFLAGS in the caller's scope (space-separated, as the plugin reports them).
+function(phongsim_add_rtl_plugin TARGET PIPELINE CONFIG OUTPUT_DIR)
+  phongsim_rtl_sources(${PIPELINE} sources)
+  phongsim_config_gflags("${CONFIG}" gflags)
+  string(REPLACE ";" " " gflags_text "${gflags}")
+  set(top ${PHONGSIM_RTL_${PIPELINE}_TOP})
+
+  add_library(${TARGET} MODULE "${PHONGSIM_SOURCE_DIR}/sim/rtl/${PIPELINE}_dut.cpp")
+  set_target_properties(${TARGET} PROPERTIES
+    PREFIX ""
+    LIBRARY_OUTPUT_DIRECTORY "${OUTPUT_DIR}"
+    POSITION_INDEPENDENT_CODE ON
+    CXX_VISIBILITY_PRESET hidden
+    VISIBILITY_INLINES_HIDDEN ON)
+  target_compile_features(${TARGET} PRIVATE cxx_std_20)
+  target_include_directories(${TARGET} PRIVATE "${PHONGSIM_SOURCE_DIR}")
+  target_compile_definitions(${TARGET} PRIVATE "PHONGSIM_RTL_GFLAGS=\"${gflags_text}\"")
+  # Fail at link time, not at dlopen, on a missing symbol; keep the Verilator runtime private to
+  # each plugin so several configurations can be loaded into one process.
+  target_link_options(${TARGET} PRIVATE -Wl,-z,defs -Wl,--exclude-libs,ALL)
+  target_link_libraries(${TARGET} PRIVATE fmt::fmt ZLIB::ZLIB Threads::Threads)
+  verilate(${TARGET}
+    SOURCES ${sources}
+    TOP_MODULE ${top}
+    PREFIX V${top}
+    TRACE_FST
+    VERILATOR_ARGS ${gflags} --assert -Wno-fatal -O3 -x-assign fast -x-initial fast)
+  set(${TARGET}_GFLAGS "${gflags_text}" PARENT_SCOPE)
+endfunction()

@@ -1,0 +1,152 @@
+#include "model/config.h"
+
+#include <fmt/format.h>
+
+#include <toml++/toml.h>
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "model/error.h"
+
+namespace phongsim {
+namespace {
+
+constexpr std::string_view kTables[] = {"format", "mode", "param"};
+
+int line_of(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
+
+}  // namespace
+
+Config Config::load(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("{}: cannot read configuration file", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse(text.str(), path.string());
+}
+
+Config Config::parse(std::string_view text, const std::string& origin) {
+  Config cfg;
+  cfg.origin_ = origin;
+  cfg.name_ = std::filesystem::path(origin).stem().string();
+
+  toml::table root;
+  try {
+    root = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("{}:{}: {}", origin, e.source().begin.line, e.description()));
+  }
+
+  for (const auto& [key, node] : root) {
+    const std::string k(key.str());
+    if (k == "pipeline" || k == "description") {
+      const auto* s = node.as_string();
+      if (s == nullptr) {
+        throw Error(fmt::format("{}:{}: '{}' must be a string", origin, line_of(node), k));
+      }
+      (k == "pipeline" ? cfg.pipeline_ : cfg.description_) = s->get();
+      continue;
+    }
+    if (std::find(std::begin(kTables), std::end(kTables), k) == std::end(kTables)) {
+      throw Error(
+          fmt::format("{}:{}: unknown top-level key '{}' (expected pipeline, description, "
+                      "[format], [mode], [param])",
+                      origin, line_of(node), k));
+    }
+    const auto* table = node.as_table();
+    if (table == nullptr) {
+      throw Error(fmt::format("{}:{}: '{}' must be a table ([{}])", origin, line_of(node), k, k));
+    }
+    auto& entries = cfg.tables_[k];
+    for (const auto& [sub_key, value] : *table) {
+      Entry e;
+      e.line = line_of(value);
+      if (const auto* s = value.as_string()) {
+        e.text = s->get();
+      } else if (const auto* i = value.as_integer()) {
+        e.integer = i->get();
+        e.is_integer = true;
+        e.text = std::to_string(e.integer);
+      } else {
+        throw Error(fmt::format("{}:{}: [{}] {} must be a string or an integer", origin, e.line, k,
+                                sub_key.str()));
+      }
+      entries.emplace(std::string(sub_key.str()), std::move(e));
+    }
+  }
+  if (cfg.pipeline_.empty()) {
+    throw Error(fmt::format("{}: missing 'pipeline = \"<name>\"' at the top", origin));
+  }
+  return cfg;
+}
+
+const Config::Entry& Config::entry(const std::string& table, const std::string& key) const {
+  const auto t = tables_.find(table);
+  const auto e = t == tables_.end() ? decltype(t->second.end()){} : t->second.find(key);
+  if (t == tables_.end() || e == t->second.end()) {
+    throw Error(fmt::format("{}: [{}] is missing '{}' (required by pipeline {})", origin_, table,
+                            key, pipeline_));
+  }
+  used_.insert(table + "." + key);
+  return e->second;
+}
+
+fx::Format Config::format(const std::string& key) const {
+  const Entry& e = entry("format", key);
+  try {
+    return fx::Format::parse(e.text);
+  } catch (const Error& err) {
+    throw Error(fmt::format("{}:{}: [format] {}: {}", origin_, e.line, key, err.what()));
+  }
+}
+
+fx::Round Config::round(const std::string& key) const {
+  const Entry& e = entry("mode", key);
+  try {
+    return fx::parse_round(e.text);
+  } catch (const Error& err) {
+    throw Error(fmt::format("{}:{}: [mode] {}: {}", origin_, e.line, key, err.what()));
+  }
+}
+
+fx::Overflow Config::overflow(const std::string& key) const {
+  const Entry& e = entry("mode", key);
+  try {
+    return fx::parse_overflow(e.text);
+  } catch (const Error& err) {
+    throw Error(fmt::format("{}:{}: [mode] {}: {}", origin_, e.line, key, err.what()));
+  }
+}
+
+std::int64_t Config::param(const std::string& key, std::int64_t lo, std::int64_t hi) const {
+  const Entry& e = entry("param", key);
+  if (!e.is_integer || e.integer < lo || e.integer > hi) {
+    throw Error(fmt::format("{}:{}: [param] {} = {} must be an integer in [{}, {}]", origin_,
+                            e.line, key, e.text, lo, hi));
+  }
+  return e.integer;
+}
+
+void Config::check_all_used() const {
+  const Entry* first = nullptr;  // the unknown key that comes first in the file
+  std::string where;
+  for (const auto& [table, entries] : tables_) {
+    for (const auto& [key, e] : entries) {
+      if (used_.count(table + "." + key) == 0 && (first == nullptr || e.line < first->line)) {
+        first = &e;
+        where = fmt::format("[{}] {}", table, key);
+      }
+    }
+  }
+  if (first != nullptr) {
+    throw Error(fmt::format("{}:{}: {}: unknown key for pipeline {}", origin_, first->line, where,
+                            pipeline_));
+  }
+}
+
+void Config::fail(const std::string& message) const {
+  throw Error(fmt::format("{}: {}", origin_, message));
+}
+
+}  // namespace phongsim

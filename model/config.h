@@ -1,0 +1,68 @@
+// Named width configuration: one TOML file in configs/<pipeline>/<name>.toml is the single source
+// of a pipeline's formats and modes for both the model (read here) and the RTL (turned into
+// Verilator -G parameters by scripts/config_gflags.py, by the same mechanical rule).
+//
+//   pipeline = "lirp"                 # which pipeline the file configures
+//   description = "..."               # one line for listings and reports
+//   [format]  p = "S1.10"             # signal formats  -> -GPFmt=<fx_pkg format word>
+//   [mode]    out_round = "half_even" # named modes     -> -GOutRound=<encoding>
+//   [param]   k = 2                   # plain integers  -> -GK=2
+//
+// The pipeline's model asks for the keys it needs; any key it did not ask for is reported as
+// unknown by check_all_used(), so a typo cannot silently fall back to a default.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <string_view>
+
+#include "model/fixed.h"
+
+namespace phongsim {
+
+class Config {
+ public:
+  // Reads and syntax-checks a file; throws Error("<file>: ...") naming the problem (and line).
+  static Config load(const std::filesystem::path& path);
+  // Same from text; `origin` stands in for the file name in messages and gives the config name.
+  static Config parse(std::string_view text, const std::string& origin);
+
+  [[nodiscard]] const std::string& name() const { return name_; }  // file stem, e.g. "default"
+  [[nodiscard]] const std::string& origin() const { return origin_; }
+  [[nodiscard]] const std::string& pipeline() const { return pipeline_; }
+  [[nodiscard]] const std::string& description() const { return description_; }
+
+  // Typed accessors; each throws Error naming file, table, key and line when the key is missing
+  // or its value is not valid.
+  [[nodiscard]] fx::Format format(const std::string& key) const;
+  [[nodiscard]] fx::Round round(const std::string& key) const;
+  [[nodiscard]] fx::Overflow overflow(const std::string& key) const;
+  [[nodiscard]] std::int64_t param(const std::string& key, std::int64_t lo, std::int64_t hi) const;
+
+  // Throws Error for the first key in the file that no accessor asked for.
+  void check_all_used() const;
+
+  // Throws Error("<origin>: <message>") - for pipeline models that reject a combination of values.
+  [[noreturn]] void fail(const std::string& message) const;
+
+ private:
+  struct Entry {
+    std::string text;  // value as written (string values unquoted)
+    std::int64_t integer = 0;
+    bool is_integer = false;
+    int line = 0;
+  };
+  const Entry& entry(const std::string& table, const std::string& key) const;
+
+  std::string origin_;
+  std::string name_;
+  std::string pipeline_;
+  std::string description_;
+  std::map<std::string, std::map<std::string, Entry>> tables_;  // "format" -> key -> entry
+  mutable std::set<std::string> used_;                          // "table.key"
+};
+
+}  // namespace phongsim

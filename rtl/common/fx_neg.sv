@@ -1,0 +1,26 @@
+// fx_neg: exact negation -a in fx_pkg::fx_neg_fmt(AFmt) (model: fx::neg), always signed.
+// Combinational; latency 0.
+//
+// Parameters: AFmt - operand format word. Ports: a_i - operand; neg_o - result.
+module fx_neg
+#(
+  parameter int unsigned AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
+  // Derived, do not override.
+  localparam int unsigned NegFmt = fx_pkg::fx_neg_fmt(AFmt),
+  localparam int unsigned AW     = fx_pkg::fx_width(AFmt),
+  localparam int unsigned NegW   = fx_pkg::fx_width(NegFmt)
+) (
+  input  logic [  AW-1:0] a_i,
+  output logic [NegW-1:0] neg_o
+);
+
+  logic [NegW-1:0] a_ext;
+
+  fx_resize #(.InFmt(AFmt), .OutFmt(NegFmt), .Round(fx_pkg::FxTruncate), .Overflow(fx_pkg::FxWrap)) u_extend (
+    .in_i (a_i),
+    .out_o(a_ext)
+  );
+
+  assign neg_o = -a_ext;
+
+endmodule

@@ -1,0 +1,92 @@
+// fx_resize: requantize a fixed-point value from InFmt to OutFmt (model: fx::resize_raw).
+//
+// 1. Align the binary point: shift left when OutFmt has more fraction bits (exact), or drop
+//    bits with rounding Round (fx_pkg::FxTruncate: floor, fx_pkg::FxHalfUp: floor(x + 1/2), fx_pkg::FxHalfEven: ties to
+//    even) when it has fewer.
+// 2. Fit the integer part: fx_pkg::FxSaturate clamps to OutFmt's range, fx_pkg::FxWrap keeps the low bits.
+// Combinational; latency 0. Specification: docs/fixed-point.md.
+//
+// Parameters: InFmt, OutFmt - format words (fx_pkg::fx_fmt); Round, Overflow - fx_pkg modes.
+// Ports: in_i - raw input bits; out_o - raw output bits.
+module fx_resize
+#(
+  parameter int unsigned InFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter int unsigned Round    = fx_pkg::FxHalfEven,
+  parameter int unsigned Overflow = fx_pkg::FxSaturate,
+  // Derived, do not override.
+  localparam int unsigned InW     = fx_pkg::fx_width(InFmt),
+  localparam int unsigned OutW    = fx_pkg::fx_width(OutFmt)
+) (
+  input  logic [ InW-1:0] in_i,
+  output logic [OutW-1:0] out_o
+);
+
+  localparam int unsigned InFrac  = fx_pkg::fx_frac(InFmt);
+  localparam int unsigned OutFrac = fx_pkg::fx_frac(OutFmt);
+  localparam int unsigned Grow    = OutFrac > InFrac ? OutFrac - InFrac : 0;
+  localparam int unsigned Drop    = InFrac > OutFrac ? InFrac - OutFrac : 0;
+  // Internal signed width: the aligned input, one bit to hold an unsigned input as signed and
+  // one for the rounding carry. Comparison width: also holds the output bounds with a sign.
+  localparam int unsigned IntW    = InW + Grow + 2;
+  localparam int unsigned CmpW    = fx_pkg::fx_max(IntW, OutW + 1);
+
+  logic signed [IntW-1:0] in_ext, aligned, rounded;
+  logic signed [CmpW-1:0] wide;
+
+  if (fx_pkg::fx_signed(InFmt)) begin : g_sign_extend
+    assign in_ext = IntW'($signed(in_i));
+  end else begin : g_zero_extend
+    assign in_ext = $signed(IntW'(in_i));
+  end
+
+  assign aligned = in_ext <<< Grow;
+
+  if (Drop == 0) begin : g_exact
+    assign rounded = aligned;
+  end else begin : g_round
+    localparam logic signed [IntW-1:0] Half = IntW'(1) <<< (Drop - 1);
+    logic signed [IntW-1:0] bias;
+    if (Round == fx_pkg::FxTruncate) begin : g_truncate
+      assign bias = '0;
+    end else if (Round == fx_pkg::FxHalfUp) begin : g_half_up
+      assign bias = Half;
+    end else begin : g_half_even
+      // Ties round up exactly when the lowest kept bit is odd.
+      assign bias = Half - IntW'(1) + $signed(IntW'(aligned[Drop]));
+    end
+    assign rounded = (aligned + bias) >>> Drop;
+  end
+
+  assign wide = CmpW'(rounded);
+
+  if (Overflow == fx_pkg::FxSaturate) begin : g_saturate
+    localparam logic signed [CmpW-1:0] MaxV =
+        fx_pkg::fx_signed(OutFmt) ? (CmpW'(1) <<< (OutW - 1)) - CmpW'(1) : (CmpW'(1) <<< OutW) - CmpW'(1);
+    localparam logic signed [CmpW-1:0] MinV = fx_pkg::fx_signed(OutFmt) ? -(CmpW'(1) <<< (OutW - 1)) : '0;
+    always_comb begin
+      if (wide > MaxV) begin
+        out_o = MaxV[OutW-1:0];
+      end else if (wide < MinV) begin
+        out_o = MinV[OutW-1:0];
+      end else begin
+        out_o = wide[OutW-1:0];
+      end
+    end
+  end else begin : g_wrap
+    assign out_o = wide[OutW-1:0];
+    if (CmpW > OutW) begin : g_unused
+      logic unused_high_bits;
+      assign unused_high_bits = ^wide[CmpW-1:OutW];
+    end
+  end
+
+  // Assertions: elaboration-time parameter checks.
+  if (Round > fx_pkg::FxHalfEven) begin : g_bad_round
+    $error("fx_resize: Round must be fx_pkg::FxTruncate, fx_pkg::FxHalfUp or fx_pkg::FxHalfEven");
+  end
+  if (Overflow > fx_pkg::FxSaturate) begin : g_bad_overflow
+    $error("fx_resize: Overflow must be fx_pkg::FxWrap or fx_pkg::FxSaturate");
+  end
+
+endmodule

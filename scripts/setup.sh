@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package phongsim needs. Idempotent: installs only what is missing,
+# and runs `apt-get update` only when something must be installed.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build   # C++20 toolchain and build
+  verilator zlib1g-dev                # RTL simulation (zlib for FST waveforms)
+  libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
+  python3                             # 3.11: tomllib turns configs into -G parameters
+  yosys                               # synthesis checks (no latches) of every RTL top
+  clang-format                        # style check in the test suite
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo=sudo; fi
+echo "setup: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,292 @@
+// phongsim command line: co-simulation, golden-vector evaluation, RTL builds, benchmarks.
+// Exit status: 0 success; 1 verification failure (mismatch, deadlock, handshake violation);
+// 2 bad input or usage (one line on stderr, no output files written).
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "model/config.h"
+#include "model/error.h"
+#include "sim/bench.h"
+#include "sim/cosim.h"
+#include "sim/eval.h"
+#include "sim/output_file.h"
+#include "sim/pipelines.h"
+#include "sim/rtl_library.h"
+
+namespace {
+
+using namespace phongsim;
+namespace fs = std::filesystem;
+
+// --pipeline / --config, shared by every subcommand that works on one configuration.
+struct Target {
+  std::string pipeline;
+  std::string config;
+  bool no_build = false;
+  std::string plugin;  // a plugin built by hand (e.g. from mutated RTL) instead of the lookup
+
+  void add_options(CLI::App& cmd, bool with_build_option = true) {
+    cmd.add_option("--pipeline", pipeline,
+                   "pipeline name (default: the configuration's `pipeline` key)");
+    cmd.add_option("--config", config, "configuration file, e.g. configs/lirp/default.toml")
+        ->required();
+    if (with_build_option) {
+      cmd.add_flag("--no-build", no_build,
+                   "fail instead of Verilating a configuration that is not built yet");
+      cmd.add_option("--rtl-plugin", plugin,
+                     "use this RTL plugin (.so from sim/rtl_build) instead of looking one up; "
+                     "it must have been built with the configuration's parameters");
+    }
+  }
+};
+
+struct Loaded {
+  Config cfg;
+  const PipelineInfo* pipeline = nullptr;
+  std::unique_ptr<PipelineModel> model;
+};
+
+Loaded load(const Target& t) {
+  Loaded l{Config::load(t.config), nullptr, nullptr};
+  l.pipeline = &find_pipeline(t.pipeline.empty() ? l.cfg.pipeline() : t.pipeline);
+  l.model = make_model(*l.pipeline, l.cfg);
+  return l;
+}
+
+DutFactory rtl_factory(const Loaded& l, const Target& t) {
+  std::shared_ptr<RtlLibrary> library;
+  if (!t.plugin.empty()) {
+    library = RtlLibrary::open(t.plugin, rtl_gflags(l.cfg));
+  } else {
+    const RtlPlugin plugin =
+        locate_rtl(l.cfg, t.no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
+    library = RtlLibrary::open(plugin.path, plugin.gflags);
+  }
+  const PipelineModel* model = l.model.get();
+  return [library, model]() { return library->create(*model); };
+}
+
+nlohmann::json to_json(const CosimReport& r) {
+  return {
+      {"pipeline", r.pipeline},
+      {"config", r.config_name},
+      {"config_path", r.config_path},
+      {"seed", r.options.seed},
+      {"vectors", r.vectors},
+      {"directed_vectors", r.directed},
+      {"random_vectors", r.random},
+      {"outputs", r.outputs},
+      {"mismatches", r.mismatches},
+      {"cycles", r.cycles},
+      {"source_idle", r.options.source.str()},
+      {"backpressure", r.options.sink.str()},
+      {"throughput", r.throughput},
+      {"latency", {{"min", r.latency_min}, {"max", r.latency_max}}},
+      {"passed", r.passed},
+      {"failure_kind", r.failure_kind},
+      {"failure", r.failure},
+  };
+}
+
+int cmd_cosim(const Target& t, CosimOptions o, const std::string& source, const std::string& sink,
+              const std::string& trace, const std::string& json) {
+  o.source = StallPattern::parse(source);
+  o.sink = StallPattern::parse(sink);
+  const Loaded l = load(t);
+  if (o.only_index && o.random_vectors != 0) {
+    // --vector-index replaces --vectors; keep the report's repro line exact.
+    o.random_vectors = 0;
+  }
+  std::optional<OutputFile> json_file;
+  std::optional<OutputFile> trace_file;
+  if (!json.empty()) json_file.emplace(json);
+  if (!trace.empty()) {
+    trace_file.emplace(trace);
+    o.trace_path = trace_file->temp_path().string();
+  }
+  const DutFactory make_dut = rtl_factory(l, t);
+  CosimReport r = cosim(*l.pipeline, l.cfg, *l.model, make_dut, o);
+  if (trace_file) {
+    trace_file->commit();
+    r.trace_written = trace;
+    std::string& f = r.failure;
+    if (const auto at = f.find(o.trace_path); at != std::string::npos) {
+      f.replace(at, o.trace_path.size(), trace);
+    }
+  }
+  if (!r.passed) fmt::print("{}", r.failure);
+  fmt::print("{}\n", r.summary());
+  if (trace_file && r.passed) fmt::print("waveform (first {} cycles): {}\n", o.trace_window, trace);
+  if (json_file) {
+    fmt::print(json_file->get(), "{}\n", to_json(r).dump(2));
+    json_file->commit();
+  }
+  return r.passed ? 0 : 1;
+}
+
+int cmd_eval(const Target& t, const std::string& backend, const std::string& in,
+             const std::string& out, bool real) {
+  const Loaded l = load(t);
+  DutFactory make_dut;
+  if (backend == "rtl") make_dut = rtl_factory(l, t);
+  const std::size_t rows = eval_csv(*l.model, make_dut, in, out, real);
+  fmt::print("{} output rows from {} ({} backend, {}) -> {}\n", rows, in, backend, l.cfg.origin(),
+             out);
+  return 0;
+}
+
+int cmd_build_rtl(const Target& t) {
+  const Loaded l = load(t);
+  const RtlPlugin plugin = locate_rtl(l.cfg, RtlBuild::if_missing, stderr);
+  (void)RtlLibrary::open(plugin.path, plugin.gflags)->create(*l.model);  // loads and binds
+  fmt::print("{} ({}): {}\n  {}\n", l.cfg.origin(), plugin.origin, plugin.path.string(),
+             plugin.gflags);
+  return 0;
+}
+
+int cmd_bench(const Target& t, std::uint64_t vectors) {
+  const Loaded l = load(t);
+  const DutFactory make_dut = rtl_factory(l, t);
+  const BenchReport r = bench(*l.pipeline, l.cfg, *l.model, make_dut, vectors);
+  fmt::print("bench {}/{}: {} random vectors each\n{}", l.pipeline->name, l.cfg.name(), vectors,
+             r.table());
+  return 0;
+}
+
+int cmd_list() {
+  const fs::path configs = fs::path(PHONGSIM_SOURCE_DIR) / "configs";
+  for (const auto& p : pipelines()) {
+    fmt::print("{:<8} {}\n", p.name, p.summary);
+    std::vector<fs::path> files;
+    if (fs::is_directory(configs / p.name)) {
+      for (const auto& e : fs::directory_iterator(configs / p.name)) {
+        if (e.path().extension() == ".toml") files.push_back(e.path());
+      }
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      const Config cfg = Config::load(f);
+      fmt::print("  {:<40} {}\n", fs::relative(f, PHONGSIM_SOURCE_DIR).string(), cfg.description());
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "phongsim: co-simulates fixed-point pixel-shading RTL against its bit-accurate "
+      "C++ model.\nExit status: 0 ok, 1 verification failure, 2 bad input."};
+  app.require_subcommand(1);
+  std::function<int()> action;
+
+  // cosim
+  Target cosim_target;
+  CosimOptions cosim_options;
+  std::string source = "none";
+  std::string sink = "none";
+  std::string trace;
+  std::string json;
+  std::uint64_t vector_index = 0;
+  auto* cosim_cmd = app.add_subcommand(
+      "cosim", "Co-simulate model and Verilated RTL on directed + seeded random vectors");
+  cosim_target.add_options(*cosim_cmd);
+  cosim_cmd
+      ->add_option("--vectors", cosim_options.random_vectors,
+                   "random vectors after the directed corners")
+      ->capture_default_str();
+  cosim_cmd->add_option("--seed", cosim_options.seed, "seed of stimulus and random stalls")
+      ->capture_default_str();
+  cosim_cmd
+      ->add_option("--source-idle", source,
+                   "when the source offers input: none | periodic:BITS | random:P | "
+                   "long[:STALL[:RUN]]")
+      ->capture_default_str();
+  cosim_cmd->add_option("--backpressure", sink, "when the sink is ready (same patterns)")
+      ->capture_default_str();
+  auto* index_opt = cosim_cmd->add_option("--vector-index", vector_index,
+                                          "run only this vector (as numbered in a failure report)");
+  cosim_cmd->add_flag("!--no-directed", cosim_options.directed, "skip the directed corners");
+  cosim_cmd->add_option("--trace", trace,
+                        "write an FST waveform: the window before the first failure, or the "
+                        "first cycles of a passing run");
+  cosim_cmd->add_option("--trace-window", cosim_options.trace_window, "waveform length in cycles")
+      ->capture_default_str();
+  cosim_cmd
+      ->add_option("--timeout", cosim_options.timeout,
+                   "cycles without a handshake that count as deadlock (0: 100000)")
+      ->capture_default_str();
+  cosim_cmd->add_option("--json", json, "write a JSON summary");
+  cosim_cmd->callback([&]() {
+    if (*index_opt) cosim_options.only_index = vector_index;
+    action = [&]() { return cmd_cosim(cosim_target, cosim_options, source, sink, trace, json); };
+  });
+
+  // eval
+  Target eval_target;
+  std::string backend = "model";
+  std::string in;
+  std::string out;
+  bool real = false;
+  auto* eval_cmd =
+      app.add_subcommand("eval", "Evaluate a CSV of input vectors through the model or the RTL");
+  eval_target.add_options(*eval_cmd);
+  eval_cmd->add_option("--backend", backend, "model or rtl")
+      ->check(CLI::IsMember({"model", "rtl"}))
+      ->capture_default_str();
+  eval_cmd->add_option("--in", in, "input CSV: header of input field names, one vector per row")
+      ->required();
+  eval_cmd->add_option("--out", out, "output CSV: header of output field names")->required();
+  eval_cmd->add_flag("--real", real, "values are reals instead of raw integers");
+  eval_cmd->callback(
+      [&]() { action = [&]() { return cmd_eval(eval_target, backend, in, out, real); }; });
+
+  // build-rtl
+  Target build_target;
+  auto* build_cmd = app.add_subcommand(
+      "build-rtl", "Verilate a configuration into the RTL cache (or find it built in)");
+  build_target.add_options(*build_cmd, false);
+  build_cmd->callback([&]() { action = [&]() { return cmd_build_rtl(build_target); }; });
+
+  // bench
+  Target bench_target;
+  std::uint64_t bench_vectors = 200000;
+  auto* bench_cmd =
+      app.add_subcommand("bench", "Vectors per second: model, Verilated RTL, co-simulation");
+  bench_target.add_options(*bench_cmd);
+  bench_cmd->add_option("--vectors", bench_vectors, "vectors per measurement")
+      ->capture_default_str();
+  bench_cmd->callback([&]() { action = [&]() { return cmd_bench(bench_target, bench_vectors); }; });
+
+  // list
+  app.add_subcommand("list", "Pipelines and their named configurations")->callback([&]() {
+    action = cmd_list;
+  });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "phongsim: error: {} (see phongsim --help)\n", e.what());
+    return 2;
+  }
+  try {
+    return action();
+  } catch (const Error& e) {
+    fmt::print(stderr, "phongsim: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "phongsim: error: {}\n", e.what());
+    return 2;
+  }
+}

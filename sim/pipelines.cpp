@@ -1,0 +1,72 @@
+#include "sim/pipelines.h"
+
+#include <fmt/format.h>
+
+#include <array>
+
+#include "model/error.h"
+#include "model/lirp.h"
+
+namespace phongsim {
+namespace {
+
+// ---- lirp ----
+
+std::unique_ptr<PipelineModel> make_lirp_model(const Config& cfg) {
+  const LirpFormats formats = LirpFormats::from_config(cfg);
+  try {
+    return std::make_unique<LirpModel>(formats);
+  } catch (const Error& e) {
+    cfg.fail(e.what());
+  }
+}
+
+// Corner values of a and of the vector components, crossed so that every component sees every
+// corner against every other one, plus a values that make exact rounding ties (a = 1/4, 1/2,
+// 3/4 times an odd difference leaves exactly half an output LSB when a has more fraction bits).
+Stimulus make_lirp_stimulus(const PipelineModel& model) {
+  const auto& f = dynamic_cast<const LirpModel&>(model).formats();
+  const auto pc = corner_values(f.p);
+  auto ac = corner_values(f.a);
+  for (int quarter = 1; quarter <= 3; ++quarter) {
+    if (f.a.frac_bits >= 2) ac.push_back(std::int64_t{quarter} << (f.a.frac_bits - 2));
+  }
+  std::vector<std::vector<std::int64_t>> directed;
+  const std::size_t n = pc.size();
+  for (const std::int64_t a : ac) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) {
+        directed.push_back({pc[i], pc[j], pc[(i + j) % n], pc[j], pc[i], pc[(i * j + 1) % n], a});
+      }
+    }
+  }
+  return Stimulus(model, std::move(directed));
+}
+
+constexpr std::array kPipelines{
+    PipelineInfo{"lirp", "LIRP unit: p = (1 - a)·p0 + a·p1 on 3-vectors (Lyon Fig. 7a)",
+                 make_lirp_model, make_lirp_stimulus},
+};
+
+}  // namespace
+
+std::span<const PipelineInfo> pipelines() { return kPipelines; }
+
+const PipelineInfo& find_pipeline(std::string_view name) {
+  for (const auto& p : kPipelines) {
+    if (p.name == name) return p;
+  }
+  std::string known;
+  for (const auto& p : kPipelines) known += (known.empty() ? "" : ", ") + std::string(p.name);
+  throw Error(fmt::format("unknown pipeline '{}' (known: {})", name, known));
+}
+
+std::unique_ptr<PipelineModel> make_model(const PipelineInfo& pipeline, const Config& cfg) {
+  if (cfg.pipeline() != pipeline.name) {
+    throw Error(fmt::format("{}: configures pipeline '{}', not '{}'", cfg.origin(), cfg.pipeline(),
+                            pipeline.name));
+  }
+  return pipeline.make_model(cfg);
+}
+
+}  // namespace phongsim

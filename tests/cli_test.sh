@@ -1,0 +1,194 @@
+#!/usr/bin/env bash
+# Command-line behaviour of phongsim, one named case per ctest test:
+#   tests/cli_test.sh BUILD_DIR CASE
+# Bad input must give one line on stderr naming the problem, exit status 2, and no output file.
+set -uo pipefail
+
+build=$(cd "$1" && pwd)
+case_name=$2
+src=$(cd "$(dirname "$0")/.." && pwd)
+phongsim="$build/phongsim"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/phongsim-cli.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+default="$src/configs/lirp/default.toml"
+
+fail() { echo "FAIL: $*"; exit 1; }
+
+# expect_error STDERR_PATTERN CMD...: exit 2, exactly one stderr line matching, no stdout files.
+expect_error() {
+  local pattern=$1
+  shift
+  "$@" >"$tmp/out" 2>"$tmp/err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "expected exit 2, got $rc from: $* (stderr: $(cat "$tmp/err"))"
+  [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one stderr line, got: $(cat "$tmp/err")"
+  grep -qE "$pattern" "$tmp/err" || fail "stderr does not match '$pattern': $(cat "$tmp/err")"
+  echo "ok: $(cat "$tmp/err")"
+}
+
+# no_files DIR: nothing but the inputs we put there.
+no_outputs() {
+  local left
+  left=$(find "$tmp" -name 'result*' -o -name '*.tmp.*' | head -1)
+  [ -z "$left" ] || fail "partial output left behind: $left"
+}
+
+write_config() {  # write_config FILE P A OUT
+  cat >"$1" <<EOT
+pipeline = "lirp"
+description = "test"
+[format]
+p = "$2"
+a = "$3"
+out = "$4"
+[mode]
+out_round = "half_even"
+out_overflow = "saturate"
+EOT
+}
+
+case "$case_name" in
+  help)
+    for sub in "" cosim eval build-rtl bench list; do
+      $phongsim $sub --help >"$tmp/help" 2>&1 || fail "phongsim $sub --help failed"
+      grep -q -i "usage" "$tmp/help" || fail "phongsim $sub --help prints no usage"
+    done
+    expect_error "requires|subcommand" "$phongsim"
+    expect_error "unknown-option|The following argument was not expected|--bogus" \
+      "$phongsim" cosim --config "$default" --bogus
+    ;;
+
+  bad-config)
+    expect_error "cannot read configuration file" \
+      "$phongsim" cosim --config "$tmp/missing.toml" --json "$tmp/result.json"
+    printf 'pipeline = "lirp"\n[format\np = "S1.10"\n' >"$tmp/syntax.toml"
+    expect_error "syntax.toml:2" "$phongsim" cosim --config "$tmp/syntax.toml" --json "$tmp/result.json"
+    write_config "$tmp/wide.toml" S70.2 1.10 S1.10
+    expect_error "wide.toml:4: \[format\] p: format S70.2: 73 bits exceeds" \
+      "$phongsim" cosim --config "$tmp/wide.toml" --json "$tmp/result.json"
+    write_config "$tmp/overflow.toml" S1.40 1.40 S1.10
+    expect_error "overflow.toml: .*the exact result needs .* bits" \
+      "$phongsim" cosim --config "$tmp/overflow.toml" --json "$tmp/result.json"
+    write_config "$tmp/typo.toml" S1.1O 1.10 S1.10
+    expect_error "typo.toml:4: \[format\] p: 'S1.1O' is not a fixed-point format" \
+      "$phongsim" cosim --config "$tmp/typo.toml"
+    printf 'pipeline = "lirp"\n[format]\np = "S1.10"\n' >"$tmp/missing_key.toml"
+    expect_error "missing_key.toml: \[format\] is missing 'a'" \
+      "$phongsim" cosim --config "$tmp/missing_key.toml"
+    write_config "$tmp/extra.toml" S1.10 1.10 S1.10
+    echo 'k = 3' >>"$tmp/extra.toml"
+    expect_error "extra.toml:10: \[mode\] k: unknown key" "$phongsim" cosim --config "$tmp/extra.toml"
+    expect_error "unknown pipeline 'nope'" "$phongsim" cosim --pipeline nope --config "$default"
+    sed 's/pipeline = "lirp"/pipeline = "kb"/' "$default" >"$tmp/other.toml"
+    expect_error "unknown pipeline 'kb'" "$phongsim" cosim --config "$tmp/other.toml"
+    no_outputs
+    ;;
+
+  bad-options)
+    expect_error "stall pattern 'random:2'" "$phongsim" cosim --config "$default" --backpressure random:2
+    expect_error "stall pattern 'sometimes'" "$phongsim" cosim --config "$default" --source-idle sometimes
+    expect_error "cannot write $tmp/no/such/dir/result.json" \
+      "$phongsim" cosim --config "$default" --vectors 10 --json "$tmp/no/such/dir/result.json"
+    expect_error "cannot write $tmp: it is a directory" \
+      "$phongsim" cosim --config "$default" --vectors 10 --trace "$tmp"
+    no_outputs
+    ;;
+
+  cosim-json)
+    "$phongsim" cosim --config "$default" --vectors 5000 --seed 3 --backpressure random:0.5 \
+      --json "$tmp/result.json" >"$tmp/out" || fail "cosim failed: $(cat "$tmp/out")"
+    grep -q '^PASS lirp/default: ' "$tmp/out" || fail "no PASS summary: $(cat "$tmp/out")"
+    python3 - "$tmp/result.json" <<'EOT' || fail "JSON summary is wrong: $(cat "$tmp/result.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["pipeline"] == "lirp" and r["config"] == "default", r
+assert r["mismatches"] == 0 and r["passed"] is True, r
+assert r["vectors"] == r["directed_vectors"] + 5000 == r["outputs"], r
+assert r["seed"] == 3 and r["backpressure"] == "random:0.5", r
+assert r["throughput"] == 1.0 and r["latency"] == {"min": 3, "max": 3}, r
+assert r["cycles"] > r["vectors"], r
+EOT
+    ;;
+
+  trace)
+    "$phongsim" cosim --config "$default" --vectors 100 --trace "$tmp/wave.fst" --trace-window 50 \
+      >"$tmp/out" || fail "cosim with --trace failed"
+    [ -s "$tmp/wave.fst" ] || fail "no waveform written"
+    head -c 1 "$tmp/wave.fst" | od -An -tx1 | grep -q '00' || fail "not an FST file"
+    ;;
+
+  eval)
+    python3 - "$tmp/vectors.csv" <<'EOT'
+import random, sys
+random.seed(5)
+with open(sys.argv[1], "w") as f:
+    f.write("a, p0_x,p0_y,p0_z,p1_x,p1_y,p1_z\n# comment lines and blank lines are skipped\n\n")
+    for _ in range(3000):
+        f.write(",".join(str(v) for v in [random.randint(0, 2047)] +
+                         [random.randint(-2048, 2047) for _ in range(6)]) + "\n")
+EOT
+    "$phongsim" eval --config "$default" --backend model --in "$tmp/vectors.csv" --out "$tmp/model.csv" \
+      || fail "eval model failed"
+    "$phongsim" eval --config "$default" --backend rtl --in "$tmp/vectors.csv" --out "$tmp/rtl.csv" \
+      || fail "eval rtl failed"
+    [ "$(head -1 "$tmp/model.csv")" = "p_x,p_y,p_z" ] || fail "bad header: $(head -1 "$tmp/model.csv")"
+    [ "$(wc -l <"$tmp/model.csv")" -eq 3001 ] || fail "expected 3000 rows"
+    cmp "$tmp/model.csv" "$tmp/rtl.csv" || fail "model and rtl outputs differ"
+    # Reals: exactly representable values give the same raw results.
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a\n0.5,-1,1,0.25,1.5,-2,0.5\n' >"$tmp/real.csv"
+    "$phongsim" eval --config "$default" --in "$tmp/real.csv" --out "$tmp/real_out.csv" --real \
+      || fail "eval --real failed"
+    [ "$(tail -1 "$tmp/real_out.csv")" = "0.375,0.25,-0.5" ] || fail "real eval: $(cat "$tmp/real_out.csv")"
+    ;;
+
+  eval-errors)
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a\n1,2,3,4,5,6,x7\n' >"$tmp/bad_int.csv"
+    expect_error "bad_int.csv:2: column 'a': 'x7' is not an integer" \
+      "$phongsim" eval --config "$default" --in "$tmp/bad_int.csv" --out "$tmp/result.csv"
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z\n1,2,3,4,5,6\n' >"$tmp/missing.csv"
+    expect_error "missing.csv:1: missing column 'a'" \
+      "$phongsim" eval --config "$default" --in "$tmp/missing.csv" --out "$tmp/result.csv"
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a,q\n1,2,3,4,5,6,7,8\n' >"$tmp/extra.csv"
+    expect_error "extra.csv:1: unknown column 'q'" \
+      "$phongsim" eval --config "$default" --in "$tmp/extra.csv" --out "$tmp/result.csv"
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a\n1,2,3,4,5,6,7\n1,2,3,4,5,6,4096\n' >"$tmp/range.csv"
+    expect_error "range.csv:3: column 'a': 4096 is outside 1.10" \
+      "$phongsim" eval --config "$default" --backend rtl --in "$tmp/range.csv" --out "$tmp/result.csv"
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a\n1,2,3\n' >"$tmp/short.csv"
+    expect_error "short.csv:2: 3 values, but the header has 7 columns" \
+      "$phongsim" eval --config "$default" --in "$tmp/short.csv" --out "$tmp/result.csv"
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a\n0,0,0,0,0,0,2.5\n' >"$tmp/real_range.csv"
+    expect_error "real_range.csv:2: column 'a': 2.5 is outside the range of 1.10" \
+      "$phongsim" eval --config "$default" --real --in "$tmp/real_range.csv" --out "$tmp/result.csv"
+    expect_error "no_such.csv: cannot read input vectors" \
+      "$phongsim" eval --config "$default" --in "$tmp/no_such.csv" --out "$tmp/result.csv"
+    printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a\n1,2,3,4,5,6,7\n' >"$tmp/good.csv"
+    expect_error "cannot write /proc/phongsim_result.csv" \
+      "$phongsim" eval --config "$default" --in "$tmp/good.csv" --out /proc/phongsim_result.csv
+    no_outputs
+    ;;
+
+  on-demand)
+    # A configuration that is not built in: Verilated into the cache on first use, then reused.
+    export PHONGSIM_CACHE="$tmp/cache"
+    write_config "$tmp/mine.toml" S1.9 1.9 S1.8
+    expect_error "is not built yet; build it with: phongsim build-rtl --pipeline lirp --config $tmp/mine.toml" \
+      "$phongsim" cosim --config "$tmp/mine.toml" --no-build --vectors 10
+    "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --backpressure random:0.3 \
+      >"$tmp/first" 2>&1 || fail "first run failed: $(cat "$tmp/first")"
+    grep -q "Verilating lirp" "$tmp/first" || fail "first run did not build: $(cat "$tmp/first")"
+    "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --no-build >"$tmp/second" 2>&1 \
+      || fail "second run failed: $(cat "$tmp/second")"
+    ! grep -q "Verilating" "$tmp/second" || fail "second run rebuilt"
+    grep -q "^PASS lirp/mine" "$tmp/second" || fail "second run: $(cat "$tmp/second")"
+    # A copy of a built-in configuration (other file, same parameters) needs no build at all.
+    cp "$default" "$tmp/copy.toml"
+    "$phongsim" build-rtl --config "$tmp/copy.toml" >"$tmp/copy" 2>&1 || fail "$(cat "$tmp/copy")"
+    grep -q "(built in)" "$tmp/copy" || fail "copy of default was not found built in: $(cat "$tmp/copy")"
+    ;;
+
+  *)
+    fail "unknown case $case_name"
+    ;;
+esac
+echo "PASS $case_name"
