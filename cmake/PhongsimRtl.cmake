@@ -2,8 +2,30 @@
 # module the phongsim tools dlopen, see sim/rtl_library.h). Used by the main build for configs/
 # and by sim/rtl_build/ for configurations Verilated on demand, so both build the same way.
 #
-# Requires PHONGSIM_SOURCE_DIR and PHONGSIM_PYTHON to be set, and verilator, fmt, ZLIB and
-# Threads to be found.
+# Requires PHONGSIM_SOURCE_DIR; call phongsim_find_rtl_tools() before adding plugins.
+
+# Finds what a plugin build needs and sets PHONGSIM_PYTHON (3.11+, for tomllib; Debian's
+# /usr/bin/python3 first, since a python3 earlier in PATH may be a separate install).
+macro(phongsim_find_rtl_tools)
+  find_package(verilator REQUIRED HINTS $ENV{VERILATOR_ROOT})
+  find_package(fmt REQUIRED)
+  find_package(ZLIB REQUIRED)
+  find_package(Threads REQUIRED)
+  if(EXISTS /usr/bin/python3 AND NOT Python3_EXECUTABLE)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 3.11 REQUIRED COMPONENTS Interpreter)
+  set(PHONGSIM_PYTHON "${Python3_EXECUTABLE}")
+endmacro()
+
+# phongsim_config_name(<configs/pipeline/name.toml> <pipeline-var> <name-var>)
+function(phongsim_config_name CONFIG PIPELINE_VAR NAME_VAR)
+  get_filename_component(dir "${CONFIG}" DIRECTORY)
+  get_filename_component(pipeline "${dir}" NAME)
+  get_filename_component(name "${CONFIG}" NAME_WE)
+  set(${PIPELINE_VAR} ${pipeline} PARENT_SCOPE)
+  set(${NAME_VAR} ${name} PARENT_SCOPE)
+endfunction()
 
 set(PHONGSIM_RTL_COMMON
     rtl/common/fx_pkg.sv
