@@ -4,8 +4,10 @@
 #
 # usage: scripts/mutation_check.sh BUILD_DIR [MUTANT...]     (default: every mutant)
 # Each mutant: a copy of the sources with one sed edit, Verilated through sim/rtl_build into a
-# scratch directory, then `phongsim cosim --rtl-plugin` on the default LIRP configuration under
-# random source and sink stalls. Exit 0 only if every mutant was caught.
+# scratch directory, then `phongsim cosim --rtl-plugin --trace` on the default LIRP configuration
+# under random source and sink stalls. Caught means: exit 1, a first-failure report with the
+# reproduce command, and a waveform of the cycles before the failure. Exit 0 only if every
+# mutant was caught.
 set -euo pipefail
 
 src=$(cd "$(dirname "$0")/.." && pwd)
@@ -49,11 +51,13 @@ for m in "${mutants[@]}"; do
   set +e
   out=$("$build/phongsim" cosim --config "$src/configs/lirp/default.toml" \
           --rtl-plugin "$work/$name/build/plugin.so" --vectors 20000 --seed 7 \
-          --source-idle random:0.3 --backpressure random:0.5 --timeout 2000 2>&1)
+          --source-idle random:0.3 --backpressure random:0.5 --timeout 2000 \
+          --trace "$work/$name/fail.fst" --trace-window 200 2>&1)
   rc=$?
   set -e
   if [ $rc -eq 1 ] && grep -qE '^(MISMATCH|UNEXPECTED OUTPUT|DEADLOCK|HANDSHAKE VIOLATION)' <<<"$out" &&
-     grep -q 'reproduce: ' <<<"$out"; then
+     grep -q 'reproduce: ' <<<"$out" && grep -q 'waveform of cycles' <<<"$out" &&
+     [ -s "$work/$name/fail.fst" ]; then
     echo "  caught:"
     sed 's/^/    /' <<<"$out" | head -8
   else

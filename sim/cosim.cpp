@@ -12,10 +12,29 @@
 namespace phongsim {
 namespace {
 
-std::string describe(const Field& f, std::int64_t raw) {
-  return fmt::format("{:<6} {:>7}  0x{:0{}x}  {:>12}  {}", f.name, f.fmt.str(),
-                     fx::to_bits(raw, f.fmt), (f.fmt.width() + 3) / 4, raw,
+// "0x802 -2046 -1.998046875": bit pattern, raw integer, real value.
+std::string value_text(const Field& f, std::int64_t raw) {
+  return fmt::format("0x{:0{}x} {:>6} {}", fx::to_bits(raw, f.fmt), (f.fmt.width() + 3) / 4, raw,
                      fx::to_real(raw, f.fmt));
+}
+
+std::string field_head(const Field& f) { return fmt::format("{:<8} {:>7}", f.name, f.fmt.str()); }
+
+// Output fields as a table with expected and got side by side, differing fields marked.
+std::string output_table(const std::vector<Field>& fields, const std::int64_t* want,
+                         std::span<const std::int64_t> got) {
+  std::size_t column = 16;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    column = std::max(column, value_text(fields[i], want[i]).size() + 4);
+  }
+  // "  outputs:" then up to where the values start ("    " + field_head + "  " = 22 columns).
+  std::string s = fmt::format("  outputs:{:12}{:<{}}got\n", "", "expected", column);
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    s += fmt::format("    {}  {:<{}}{}{}\n", field_head(fields[i]), value_text(fields[i], want[i]),
+                     column, value_text(fields[i], got[i]),
+                     want[i] != got[i] ? "   <-- differs" : "");
+  }
+  return s;
 }
 
 // One input transaction between acceptance and its last output.
@@ -54,7 +73,9 @@ class Scoreboard {
           "UNEXPECTED OUTPUT at cycle {}: the model expects no output now (all {} checked "
           "outputs matched); duplicated or extra output\n  got:\n",
           cycle, checked_);
-      for (std::size_t i = 0; i < n; ++i) report += "    " + describe(outs[i], got[i]) + "\n";
+      for (std::size_t i = 0; i < n; ++i) {
+        report += fmt::format("    {}  {}\n", field_head(outs[i]), value_text(outs[i], got[i]));
+      }
       if (last_.size() == n && std::equal(last_.begin(), last_.end(), got.begin())) {
         report += "  it repeats the previous output: duplicated\n";
       }
@@ -69,13 +90,9 @@ class Scoreboard {
       report += "  inputs:\n";
       const auto& ins = model_.inputs();
       for (std::size_t i = 0; i < ins.size(); ++i) {
-        report += "    " + describe(ins[i], t.in[i]) + "\n";
+        report += fmt::format("    {}  {}\n", field_head(ins[i]), value_text(ins[i], t.in[i]));
       }
-      report += "  outputs (expected | got):\n";
-      for (std::size_t i = 0; i < n; ++i) {
-        report += fmt::format("    {}\n    {:>{}}{}{}\n", describe(outs[i], want[i]), "| ", 8,
-                              describe(outs[i], got[i]), want[i] != got[i] ? "   <-- differs" : "");
-      }
+      report += output_table(outs, want, got);
       failing_index_ = t.index;
       return false;
     }
@@ -238,10 +255,13 @@ std::string failure_context(const CosimReport& r, std::optional<std::uint64_t> o
 }  // namespace
 
 std::string CosimReport::summary() const {
+  const std::string vectors_in =
+      passed ? fmt::format("{} vectors", vectors)
+             : fmt::format("{} of {} vectors accepted", vectors, directed + random);
   std::string s = fmt::format(
-      "{} {}/{}: {} vectors ({} directed + {} random, seed {}), {} outputs, {} mismatches, {} "
-      "cycles; source {}, sink {}",
-      passed ? "PASS" : "FAIL", pipeline, config_name, vectors, directed, random, options.seed,
+      "{} {}/{}: {} ({} directed + {} random, seed {}), {} outputs, {} mismatches, {} cycles; "
+      "source {}, sink {}",
+      passed ? "PASS" : "FAIL", pipeline, config_name, vectors_in, directed, random, options.seed,
       outputs, mismatches, cycles, options.source.str(), options.sink.str());
   if (throughput > 0) {
     s += fmt::format("; throughput {:.3f}/clock, latency {}", throughput, latency_min);

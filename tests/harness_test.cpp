@@ -249,10 +249,15 @@ class FakeDut final : public phongsim::RtlDut {
 // ---- expected report text ----
 
 // One field line of a report, as specified by cosim.cpp's describe().
-std::string Describe(const phongsim::Field& f, std::int64_t raw) {
-  return fmt::format("{:<6} {:>7}  0x{:0{}x}  {:>12}  {}", f.name, f.fmt.str(),
-                     fx::to_bits(raw, f.fmt), (f.fmt.width() + 3) / 4, raw,
+// One value as the reports print it: bit pattern, raw integer, real.
+std::string Value(const phongsim::Field& f, std::int64_t raw) {
+  return fmt::format("0x{:0{}x} {:>6} {}", fx::to_bits(raw, f.fmt), (f.fmt.width() + 3) / 4, raw,
                      fx::to_real(raw, f.fmt));
+}
+
+// A report line for one field: name, format, value.
+std::string Describe(const phongsim::Field& f, std::int64_t raw) {
+  return fmt::format("{:<8} {:>7}  {}", f.name, f.fmt.str(), Value(f, raw));
 }
 
 class Cosim : public testing::Test {
@@ -303,13 +308,17 @@ class Cosim : public testing::Test {
     for (std::size_t i = 0; i < in.size(); ++i) {
       s += "    " + Describe(model_->inputs()[i], in[i]) + "\n";
     }
-    s += "  outputs (expected | got):\n";
     const auto want = Outputs(index);
+    std::size_t column = 16;  // widest expected value + 4
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      column = std::max(column, Value(model_->outputs()[i], want[i]).size() + 4);
+    }
+    s += "  outputs:" + std::string(12, ' ') + "expected" + std::string(column - 8, ' ') + "got\n";
     for (std::size_t i = 0; i < want.size(); ++i) {
       const auto& f = model_->outputs()[i];
-      s += "    " + Describe(f, want[i]) + "\n";
-      s +=
-          "          | " + Describe(f, got[i]) + (want[i] != got[i] ? "   <-- differs" : "") + "\n";
+      const std::string w = Value(f, want[i]);
+      s += "    " + Describe(f, want[i]) + std::string(column - w.size(), ' ') + Value(f, got[i]) +
+           (want[i] != got[i] ? "   <-- differs" : "") + "\n";
     }
     return s;
   }
@@ -459,7 +468,8 @@ TEST_F(Cosim, CorruptLsbIsAMismatchMarkingTheField) {
     ++marks;
   }
   EXPECT_EQ(marks, 1u);
-  EXPECT_NE(r.failure.find("          | p_y  "), std::string::npos);
+  const auto marked = r.failure.rfind('\n', r.failure.find("<-- differs")) + 1;
+  EXPECT_EQ(r.failure.substr(marked, 8), "    p_y ");
   EXPECT_EQ(probe.fault_cycle, kK + kLatency);
   // Vectors accepted through the failing cycle; outputs before the failing one; no measurement.
   EXPECT_EQ(r.vectors, kK + kLatency + 1);
@@ -468,7 +478,8 @@ TEST_F(Cosim, CorruptLsbIsAMismatchMarkingTheField) {
   EXPECT_EQ(r.mismatches, 1u);
   EXPECT_EQ(r.throughput, 0.0);
   EXPECT_EQ(r.summary(),
-            "FAIL lirp/default: 2504 vectors (1859 directed + 2000 random, seed 7), 2500 "
+            "FAIL lirp/default: 2504 of 3859 vectors accepted (1859 directed + 2000 random, seed "
+            "7), 2500 "
             "outputs, 1 mismatches, 2504 cycles; source none, sink none; first failure: "
             "mismatch");
   EXPECT_EQ(probe.instances, 1);
