@@ -59,7 +59,7 @@ for m in "${mutants[@]}"; do
      grep -q 'reproduce: ' <<<"$out" && grep -q 'waveform of cycles' <<<"$out" &&
      [ -s "$work/$name/fail.fst" ]; then
     echo "  caught:"
-    sed 's/^/    /' <<<"$out" | head -8
+    sed "s/^/    /" <<<"$out"
   else
     echo "  NOT CAUGHT (exit $rc):"
     sed 's/^/    /' <<<"$out"

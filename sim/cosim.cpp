@@ -235,6 +235,7 @@ std::string repro_command(const CosimReport& r, std::optional<std::uint64_t> onl
     if (!o.directed) cmd += " --no-directed";
   }
   cmd += fmt::format(" --source-idle {} --backpressure {}", o.source.str(), o.sink.str());
+  if (o.timeout != 0) cmd += fmt::format(" --timeout {}", o.timeout);
   return cmd;
 }
 

@@ -325,8 +325,9 @@ class Cosim : public testing::Test {
 
   // The lines cosim appends to every main-run failure.
   static std::string Context(const CosimOptions& o, std::optional<std::uint64_t> alone) {
-    const std::string patterns =
+    std::string patterns =
         fmt::format("--source-idle {} --backpressure {}", o.source.str(), o.sink.str());
+    if (o.timeout != 0) patterns += fmt::format(" --timeout {}", o.timeout);
     const std::string cmd =
         fmt::format("phongsim cosim --pipeline lirp --config {} --seed {}", kConfigPath, o.seed);
     std::string s = fmt::format(
@@ -712,8 +713,8 @@ TEST_F(Cosim, VectorIndexReproducesAMismatchAlone) {
   EXPECT_NE(full.failure.find(fmt::format(", vector {} (", kK)), std::string::npos);
   const std::string alone_line = fmt::format(
       "  this vector alone: phongsim cosim --pipeline lirp --config {} --seed 7 --vector-index "
-      "{} --source-idle random:0.5 --backpressure random:0.5\n",
-      kConfigPath, kK);
+      "{} --source-idle random:0.5 --backpressure random:0.5 --timeout {}\n",
+      kConfigPath, kK, o.timeout);
   EXPECT_NE(full.failure.find(alone_line), std::string::npos) << full.failure;
 
   CosimOptions only = o;
