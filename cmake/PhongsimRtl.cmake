@@ -34,6 +34,8 @@ set(PHONGSIM_RTL_COMMON
     rtl/common/fx_sub.sv
     rtl/common/fx_mul.sv
     rtl/common/fx_neg.sv
+    rtl/common/fx_abs.sv
+    rtl/common/fx_scale.sv
     rtl/common/stream_register.sv
     rtl/common/stream_skid.sv)
 

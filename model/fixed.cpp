@@ -12,8 +12,11 @@ namespace phongsim::fx {
 namespace detail {
 
 void refuse(Format r, const char* op, Format a, Format b) {
-  const std::string what = std::string(op) == "neg" ? fmt::format("-{}", a.str())
-                                                    : fmt::format("{} {} {}", a.str(), op, b.str());
+  const std::string o = op;
+  const std::string what = o == "neg"     ? fmt::format("-{}", a.str())
+                           : o == "abs"   ? fmt::format("|{}|", a.str())
+                           : o == "scale" ? fmt::format("scale({})", a.str())
+                                          : fmt::format("{} {} {}", a.str(), op, b.str());
   if (r.width() > kMaxWidth) {
     throw Error(
         fmt::format("{}: the exact result needs {} bits, over the model's {}-bit limit "

@@ -74,6 +74,10 @@ struct Format {
 //   sub: fraction max(fa, fb); integer max(ia, ib) + 1; always signed.
 //   mul: fraction fa + fb; integer ia + ib (+1 when both are signed); width wa + wb.
 //   neg: signed; integer ia + 1 when a is signed (-(-2^ia) needs it), else ia.
+//   abs: unsigned; integer ia + 1 when a is signed (|-2^ia| needs it), else ia.
+//   scale by 2^k (k may be negative): the binary point moves, bits stay. k >= 0: integer ia + k,
+//     fraction max(fa - k, 0) (raw shifted left by max(k - fa, 0)); k < 0: fraction fa - k,
+//     integer max(ia + k, 0) (raw unchanged, the format may widen).
 namespace detail {
 [[nodiscard]] constexpr bool valid(Format f) {
   return f.int_bits >= 0 && f.frac_bits >= 0 && f.int_bits <= kMaxWidth &&
@@ -110,6 +114,19 @@ namespace detail {
     detail::refuse(r, "neg", a, a);
   return r;
 }
+[[nodiscard]] inline Format abs_format(Format a) {
+  const Format r{false, a.int_bits + (a.is_signed ? 1 : 0), a.frac_bits};
+  if (!detail::valid(r)) [[unlikely]]
+    detail::refuse(r, "abs", a, a);
+  return r;
+}
+[[nodiscard]] inline Format scale_format(Format a, int k) {
+  const Format r = k >= 0 ? Format{a.is_signed, a.int_bits + k, std::max(a.frac_bits - k, 0)}
+                          : Format{a.is_signed, std::max(a.int_bits + k, 0), a.frac_bits - k};
+  if (!detail::valid(r)) [[unlikely]]
+    detail::refuse(r, "scale", a, a);
+  return r;
+}
 
 // A value: raw integer plus its format. Operations check their result format (cheap integer
 // compares) so even unplanned use cannot overflow the host integer.
@@ -138,6 +155,12 @@ struct Fixed {
   return {a.raw * b.raw, mul_format(a.fmt, b.fmt)};
 }
 [[nodiscard]] inline Fixed neg(Fixed a) { return {-a.raw, neg_format(a.fmt)}; }
+[[nodiscard]] inline Fixed abs(Fixed a) { return {a.raw < 0 ? -a.raw : a.raw, abs_format(a.fmt)}; }
+// x · 2^k, exact: a shift of the binary point (see scale_format).
+[[nodiscard]] inline Fixed scale(Fixed a, int k) {
+  const Format r = scale_format(a.fmt, k);
+  return {a.raw << std::max(k - a.fmt.frac_bits, 0), r};
+}
 
 // Requantize `raw` (in `from`) to `to`: align the binary point (rounding per `round` when fraction
 // bits are dropped), then handle overflow per `overflow`. Exact whenever `to` can hold the value.

@@ -105,6 +105,11 @@ Format DocMul(Format a, Format b) {
           a.frac_bits + b.frac_bits};
 }
 Format DocNeg(Format a) { return {true, a.int_bits + (a.is_signed ? 1 : 0), a.frac_bits}; }
+Format DocAbs(Format a) { return {false, a.int_bits + (a.is_signed ? 1 : 0), a.frac_bits}; }
+Format DocScale(Format a, int k) {
+  return k >= 0 ? Format{a.is_signed, a.int_bits + k, std::max(a.frac_bits - k, 0)}
+                : Format{a.is_signed, std::max(a.int_bits + k, 0), a.frac_bits - k};
+}
 
 // Collects mismatches from an exhaustive loop (one per test) and says when to stop, so one bug
 // reports a few reproducible cases instead of a million lines.
@@ -217,6 +222,52 @@ TEST(ArithExhaustive, NegOfEveryValueIsExact) {
       }
     }
   }
+}
+
+TEST(ArithExhaustive, AbsOfEveryValueIsExact) {
+  Mismatches bad;
+  for (const Format f : kSmall) {
+    ASSERT_EQ(fx::abs_format(f), DocAbs(f)) << Name(f);
+    for (const std::int64_t a : AllRaws(f)) {
+      const fxref::Value v = fxref::value_of(a, f);
+      const fxref::Value want = v.num < 0 ? fxref::neg(v) : v;
+      const std::string err = CheckExact(fx::abs(fx::from_raw(a, f)), want, DocAbs(f));
+      if (!err.empty() && bad.Report(fmt::format("|{} raw {}|: {}", Name(f), a, err))) {
+        return;
+      }
+    }
+  }
+}
+
+// x · 2^k for k across both edges: the point passing the last fraction bit (zeros appended)
+// and the first integer bit (the format widens).
+TEST(ArithExhaustive, ScaleOfEveryValueIsExact) {
+  Mismatches bad;
+  for (const Format f : kSmall) {
+    for (int k = -9; k <= 9; ++k) {
+      ASSERT_EQ(fx::scale_format(f, k), DocScale(f, k)) << Name(f) << " k=" << k;
+      for (const std::int64_t a : AllRaws(f)) {
+        const fxref::Value v = fxref::value_of(a, f);
+        // Exactly v · 2^k, kept with a non-negative exponent as the reference requires.
+        const fxref::Value want = v.exp - k >= 0 ? fxref::Value{v.num, v.exp - k}
+                                                 : fxref::mul(v, fxref::Value{fxref::pow2(k), 0});
+        const std::string err = CheckExact(fx::scale(fx::from_raw(a, f), k), want, DocScale(f, k));
+        if (!err.empty() &&
+            bad.Report(fmt::format("scale({} raw {}, {}): {}", Name(f), a, k, err))) {
+          return;
+        }
+      }
+    }
+  }
+}
+
+TEST(ArithCorners, AbsAndScale) {
+  // |S3.4 min| = |-8| = 8 needs the 4th integer bit: 4.4 raw 128.
+  EXPECT_EQ(fx::abs(fx::from_raw(-128, S(3, 4))), (Fixed{128, U(4, 4)}));
+  // 1.5 in S1.2 (raw 6) times 2^3 = 12: S4.0 raw 12 (one zero appended below the point).
+  EXPECT_EQ(fx::scale(fx::from_raw(6, S(1, 2)), 3), (Fixed{12, S(4, 0)}));
+  // -1.5 / 2^3 = -0.1875: S0.5 raw -6 (bits unchanged, the point moved past the integer bit).
+  EXPECT_EQ(fx::scale(fx::from_raw(-6, S(1, 2)), -3), (Fixed{-6, S(0, 5)}));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -3,6 +3,7 @@
 // (every operand pair for add/sub/mul), every rounding and overflow mode listed there.
 #include <gtest/gtest.h>
 
+#include <string>
 #include <string_view>
 
 #include "Vfx_cosim_top.h"
@@ -22,6 +23,8 @@ Fixed expected(const FxCosimCase& c, std::uint64_t a_bits) {
     return resize(a, Format::parse(c.b), parse_round(c.round), parse_overflow(c.overflow));
   }
   if (op == "neg") return neg(a);
+  if (op == "abs") return abs(a);
+  if (op == "scale") return scale(a, std::stoi(c.b));
   const Format fb = Format::parse(c.b);
   const Fixed b{from_bits(a_bits >> 8, fb), fb};
   if (op == "add") return add(a, b);

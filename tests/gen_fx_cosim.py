@@ -32,7 +32,11 @@ BINARY = [
     ("S3.4", "S3.4"), ("S3.4", "4.4"), ("4.4", "S3.4"), ("4.4", "4.4"), ("S0.7", "2.6"),
     ("S7.0", "0.8"), ("S1.2", "S3.4"), ("0.3", "S0.0"), ("S0.0", "S0.0"), ("8.0", "S7.0"),
 ]
-NEG = ["S3.4", "4.4", "S0.0", "0.8", "S7.0"]
+NEG = ["S3.4", "4.4", "S0.0", "0.8", "S7.0"]  # also the operands of abs
+# Binary-point shifts: (operand, k) across both edges (the point passing the last fraction bit
+# and the first integer bit).
+SCALE = [("S3.4", 2), ("S3.4", 6), ("S3.4", -2), ("S3.4", -5), ("4.4", 5), ("4.4", -7),
+         ("S0.7", -1), ("8.0", 3), ("S7.0", -8)]
 
 
 def cases():
@@ -45,16 +49,23 @@ def cases():
             yield (op, a, b, "", "")
     for a in NEG:
         yield ("neg", a, "", "", "")
+        yield ("abs", a, "", "", "")
+    for a, k in SCALE:
+        yield ("scale", a, str(k), "", "")
 
 
 def width_expr(op, a, b):
-    fa, fb = format_word(a), format_word(b) if b else 0
+    fa = format_word(a)
+    if op == "scale":
+        return f"fx_pkg::fx_width(fx_pkg::fx_scale_fmt({fa}, {b}))"
+    fb = format_word(b) if b else 0
     result = {
         "resize": f"{fb}",
         "add": f"fx_pkg::fx_add_fmt({fa}, {fb})",
         "sub": f"fx_pkg::fx_sub_fmt({fa}, {fb})",
         "mul": f"fx_pkg::fx_mul_fmt({fa}, {fb})",
         "neg": f"fx_pkg::fx_neg_fmt({fa})",
+        "abs": f"fx_pkg::fx_abs_fmt({fa})",
     }[op]
     return f"fx_pkg::fx_width({result})"
 
@@ -70,6 +81,11 @@ def instance(i, op, a, b, rnd, ovf):
             f".Overflow({MODES[ovf]})) u{i} (.in_i(a_i[{wa}-1:0]), .out_o(r{i}));")
     elif op == "neg":
         lines.append(f"  fx_neg #(.AFmt({fa})) u{i} (.a_i(a_i[{wa}-1:0]), .neg_o(r{i}));")
+    elif op == "abs":
+        lines.append(f"  fx_abs #(.AFmt({fa})) u{i} (.a_i(a_i[{wa}-1:0]), .abs_o(r{i}));")
+    elif op == "scale":
+        lines.append(f"  fx_scale #(.AFmt({fa}), .Shift({b})) u{i} (.a_i(a_i[{wa}-1:0]), "
+                     f".scaled_o(r{i}));")
     else:
         fb = format_word(b)
         port = {"add": "sum_o", "sub": "diff_o", "mul": "prod_o"}[op]

@@ -47,7 +47,8 @@ package fx_pkg;
     fx_max = a > b ? a : b;
   endfunction
 
-  // Exact width growth, identical to add_format / sub_format / mul_format / neg_format.
+  // Exact width growth, identical to add_format / sub_format / mul_format / neg_format /
+  // abs_format.
   function automatic int unsigned fx_add_fmt(int unsigned a, int unsigned b);
     fx_add_fmt = fx_fmt(fx_signed(a) | fx_signed(b), fx_max(fx_int(a), fx_int(b)) + 1,
                   fx_max(fx_frac(a), fx_frac(b)));
@@ -61,6 +62,20 @@ package fx_pkg;
     fx_mul_fmt = fx_fmt(fx_signed(a) | fx_signed(b),
                   fx_int(a) + fx_int(b) + (fx_signed(a) && fx_signed(b) ? 1 : 0),
                   fx_frac(a) + fx_frac(b));
+  endfunction
+
+  function automatic int unsigned fx_abs_fmt(int unsigned a);
+    fx_abs_fmt = fx_fmt(1'b0, fx_int(a) + (fx_signed(a) ? 1 : 0), fx_frac(a));
+  endfunction
+
+  // Scale by 2^k: the binary point moves by k, the bits stay (model: fx::scale_format).
+  function automatic int unsigned fx_scale_fmt(int unsigned a, int k);
+    if (k >= 0) begin
+      fx_scale_fmt = fx_fmt(fx_signed(a), fx_int(a) + k,
+                            fx_frac(a) > k ? fx_frac(a) - k : 0);
+    end else begin
+      fx_scale_fmt = fx_fmt(fx_signed(a), fx_int(a) > -k ? fx_int(a) + k : 0, fx_frac(a) - k);
+    end
   endfunction
 
   function automatic int unsigned fx_neg_fmt(int unsigned a);
