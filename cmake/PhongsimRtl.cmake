@@ -36,14 +36,19 @@ set(PHONGSIM_RTL_COMMON
     rtl/common/fx_neg.sv
     rtl/common/fx_abs.sv
     rtl/common/fx_scale.sv
-    rtl/common/stream_register.sv
+    rtl/common/pipe_ctrl.sv
+    rtl/common/pipe_delay.sv
     rtl/common/stream_skid.sv)
 
 # Per pipeline: top module and its sources (package first).
 set(PHONGSIM_RTL_lirp_TOP lirp_unit)
-set(PHONGSIM_RTL_lirp_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_unit.sv)
+set(PHONGSIM_RTL_lirp_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_core.sv rtl/lirp/lirp_unit.sv)
 
-set(PHONGSIM_PIPELINES lirp)
+set(PHONGSIM_RTL_lyon_TOP lyon_top)
+set(PHONGSIM_RTL_lyon_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_core.sv rtl/lyon/lyon_dot3.sv
+    rtl/lyon/lyon_norm.sv rtl/lyon/lyon_x.sv rtl/lyon/lyon_shape.sv rtl/lyon/lyon_top.sv)
+
+set(PHONGSIM_PIPELINES lirp lyon)
 
 # phongsim_rtl_sources(<pipeline> <out-var>): absolute paths of the pipeline's RTL sources.
 function(phongsim_rtl_sources PIPELINE OUT)
@@ -74,10 +79,28 @@ function(phongsim_config_gflags CONFIG OUT)
   set(${OUT} ${flags} PARENT_SCOPE)
 endfunction()
 
-# phongsim_add_rtl_plugin(<target> <pipeline> <config.toml> <output-dir>): Verilates the
-# pipeline's top with the configuration's parameters into <output-dir>/<target>.so.
+# phongsim_add_verilator_runtime(<target>): the Verilator runtime as one shared library, so the
+# plugins of a build share it instead of each compiling its own copy (defines as verilate()
+# uses them with TRACE_FST).
+function(phongsim_add_verilator_runtime TARGET)
+  add_library(${TARGET} SHARED
+    "${VERILATOR_ROOT}/include/verilated.cpp"
+    "${VERILATOR_ROOT}/include/verilated_fst_c.cpp"
+    "${VERILATOR_ROOT}/include/verilated_threads.cpp")
+  target_include_directories(${TARGET} PUBLIC
+    "${VERILATOR_ROOT}/include" "${VERILATOR_ROOT}/include/vltstd")
+  target_compile_definitions(${TARGET} PUBLIC
+    VM_COVERAGE=0 VM_SC=0 VM_TRACE=1 VM_TRACE_FST=1 VM_TRACE_VCD=0)
+  target_compile_features(${TARGET} PUBLIC cxx_std_20)
+  target_link_libraries(${TARGET} PUBLIC ZLIB::ZLIB Threads::Threads)
+endfunction()
+
+# phongsim_add_rtl_plugin(<target> <pipeline> <config.toml> <output-dir> [RUNTIME <lib>]):
+# Verilates the pipeline's top with the configuration's parameters into <output-dir>/<target>.so.
+# With RUNTIME the plugin links that shared Verilator runtime instead of compiling its own.
 # Sets <target>_GFLAGS in the caller's scope (space-separated, as the plugin reports them).
 function(phongsim_add_rtl_plugin TARGET PIPELINE CONFIG OUTPUT_DIR)
+  cmake_parse_arguments(ARG "" "RUNTIME" "" ${ARGN})
   phongsim_rtl_sources(${PIPELINE} sources)
   phongsim_config_gflags("${CONFIG}" gflags)
   string(REPLACE ";" " " gflags_text "${gflags}")
@@ -103,5 +126,11 @@ function(phongsim_add_rtl_plugin TARGET PIPELINE CONFIG OUTPUT_DIR)
     PREFIX V${top}
     TRACE_FST
     VERILATOR_ARGS ${gflags} --assert -Wno-fatal -O3 -x-assign fast -x-initial fast)
+  if(ARG_RUNTIME)
+    get_target_property(plugin_sources ${TARGET} SOURCES)
+    list(FILTER plugin_sources EXCLUDE REGEX "^${VERILATOR_ROOT}/include/[^/]*\\.cpp$")
+    set_property(TARGET ${TARGET} PROPERTY SOURCES ${plugin_sources})
+    target_link_libraries(${TARGET} PRIVATE ${ARG_RUNTIME})
+  endif()
   set(${TARGET}_GFLAGS "${gflags_text}" PARENT_SCOPE)
 endfunction()

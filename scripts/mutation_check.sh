@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Breaks the LIRP RTL on purpose, one mutant at a time, and checks that co-simulation catches
-# each one with a first-failure report. A verification that cannot fail proves nothing.
+# Breaks the RTL on purpose, one mutant at a time, and checks that co-simulation catches each
+# one with a first-failure report. A verification that cannot fail proves nothing.
 #
 # usage: scripts/mutation_check.sh BUILD_DIR [MUTANT...]     (default: every mutant)
 # Each mutant: a copy of the sources with one sed edit, Verilated through sim/rtl_build into a
-# scratch directory, then `phongsim cosim --rtl-plugin --trace` on the default LIRP configuration
+# scratch directory, then `phongsim cosim --rtl-plugin --trace` on the mutant's configuration
 # under random source and sink stalls. Caught means: exit 1, a first-failure report with the
 # reproduce command, and a waveform of the cycles before the failure. Exit 0 only if every
 # mutant was caught.
@@ -16,18 +16,25 @@ shift
 work=$(mktemp -d "${TMPDIR:-/tmp}/phongsim-mutants.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
-# name @ file @ sed expression @ what it breaks
+# name @ configuration @ file @ sed expression @ what it breaks
 mutants=(
-  "round@rtl/common/fx_resize.sv@s/assign bias = Half - IntW'(1) + /assign bias = Half + /@convergent rounding constant off by one LSB"
-  "skid-valid@rtl/common/stream_skid.sv@/if (spare_valid_q) begin/,/end/ s/main_valid_d  = 1'b1;/main_valid_d  = 1'b0;/@skid buffer drops the transaction it caught during a stall"
-  "ready@rtl/common/stream_register.sv@s/assign in_ready_o  = out_ready_i | ~valid_q;/assign in_ready_o  = out_ready_i | valid_q;/@stage accepts while full: overwrites a stalled transaction"
-  "sub-order@rtl/lirp/lirp_unit.sv@s/.a_i   (in_p1_i\[c\*PW+:PW\]),/.a_i   (in_p0_i[c*PW+:PW]),/@difference p0 - p0 instead of p1 - p0"
+  "round@configs/lirp/default.toml@rtl/common/fx_resize.sv@s/assign bias = Half - IntW'(1) + /assign bias = Half + /@convergent rounding constant off by one LSB"
+  "skid-valid@configs/lirp/default.toml@rtl/common/stream_skid.sv@/if (spare_valid_q) begin/,/end/ s/main_valid_d  = 1'b1;/main_valid_d  = 1'b0;/@skid buffer drops the transaction it caught during a stall"
+  "ready@configs/lirp/default.toml@rtl/common/pipe_ctrl.sv@s/assign ready\\[i\\] = out_ready_i | ~valid_q\\[i\\];/assign ready[i] = out_ready_i | valid_q[i];/@last pipeline stage accepts while full: overwrites a stalled transaction"
+  "sub-order@configs/lirp/default.toml@rtl/lirp/lirp_core.sv@s/.a_i   (p1_i\\[c\\*PW+:PW\\]),/.a_i   (p0_i[c*PW+:PW]),/@difference p0 - p0 instead of p1 - p0"
+  "lyon-g2@configs/lyon/default.toml@rtl/lyon/lyon_norm.sv@s/if (en_i\\[1\\]) g_q <= g_d;/if (en_i[1]) g_q <= g_d + 1'b1;/@g2 one LSB too large"
+  "lyon-square@configs/lyon/default.toml@rtl/lyon/lyon_shape.sv@/u_square_round/,/) u_square_round/ s/.Round   (Round),/.Round   (fx_pkg::FxTruncate),/@shape-function squarers truncate instead of rounding to even (one LSB)"
+  "lyon-compare@configs/lyon/default.toml@rtl/lyon/lyon_x.sv@0,/assign zero_d = |xk\\[XkW-1:XkFrac\\];/ s/assign zero_d = |xk\\[XkW-1:XkFrac\\];/assign zero_d = |xk[XkW-1:XkFrac-1];/@comparator fires at x/2^k >= 1/2 instead of >= 1"
+  "lyon-fig8-w@configs/lyon/fig8_k1.toml@rtl/lyon/lyon_x.sv@/.OutFmt  (WFmt),/{n;s/.Round   (Round),/.Round   (fx_pkg::FxTruncate),/}@Fig. 8 squarer inputs truncated instead of rounded (one LSB)"
+  "lyon-sqrt2@configs/lyon/fig8_k2.toml@rtl/lyon/lyon_x.sv@s/localparam int unsigned S         = (K + 2) \\/ 2;/localparam int unsigned S         = (K + 1) \\/ 2;/@Fig. 8 shift without the even-k sqrt(2) correction"
+  "lyon-halfway@configs/lyon/halfway.toml@rtl/lyon/lyon_top.sv@s/.b_i  (vl_q1\\[c\\*VecW+:VecW\\]),/.b_i  (vl_q1[3*VecW+c*VecW+:VecW]),/@H = (L + L)/2 instead of (L + V)/2"
+  "lyon-diffuse-delay@configs/lyon/default.toml@rtl/lyon/lyon_top.sv@s/pipe_delay #(.Width(DiffW), .Depth(Depth - 7))/pipe_delay #(.Width(DiffW), .Depth(Depth - 8))/@diffuse term one stage short: paired with the wrong pixel"
 )
 
 selected=("$@")
 failed=0
 for m in "${mutants[@]}"; do
-  IFS='@' read -r name file expr what <<<"$m"
+  IFS='@' read -r name config file expr what <<<"$m"
   if [ ${#selected[@]} -gt 0 ] && [[ ! " ${selected[*]} " == *" $name "* ]]; then continue; fi
   tree="$work/$name/src"
   mkdir -p "$tree"
@@ -38,10 +45,12 @@ for m in "${mutants[@]}"; do
     failed=1
     continue
   fi
-  echo "mutant $name: $what"
+  echo "mutant $name ($config): $what"
+  pipeline=$(basename "$(dirname "$config")")
   if ! { cmake -S "$tree/sim/rtl_build" -B "$work/$name/build" -DCMAKE_BUILD_TYPE=Release \
-           -DPHONGSIM_SOURCE_DIR="$tree" -DPHONGSIM_PIPELINE=lirp \
-           -DPHONGSIM_CONFIG="$src/configs/lirp/default.toml" &&
+           -DPHONGSIM_SOURCE_DIR="$tree" -DPHONGSIM_PIPELINE="$pipeline" \
+           -DPHONGSIM_CONFIG="$src/$config" \
+           -DPHONGSIM_VERILATED_RUNTIME="$build/libphongsim_verilated.so" &&
          cmake --build "$work/$name/build" --parallel "$(nproc)"; } >"$work/$name/build.log" 2>&1; then
     echo "  could not build the mutant; log:"
     tail -20 "$work/$name/build.log"
@@ -49,7 +58,7 @@ for m in "${mutants[@]}"; do
     continue
   fi
   set +e
-  out=$("$build/phongsim" cosim --config "$src/configs/lirp/default.toml" \
+  out=$("$build/phongsim" cosim --config "$src/$config" \
           --rtl-plugin "$work/$name/build/plugin.so" --vectors 20000 --seed 7 \
           --source-idle random:0.3 --backpressure random:0.5 --timeout 2000 \
           --trace "$work/$name/fail.fst" --trace-window 200 2>&1)

@@ -12,9 +12,12 @@
 
 #include "model/config.h"
 #include "model/error.h"
+#include "model/lyon.h"
+#include "model/lyon_float.h"
 #include "sim/bench.h"
 #include "sim/cosim.h"
 #include "sim/eval.h"
+#include "sim/lyon_analysis.h"
 #include "sim/output_file.h"
 #include "sim/pipelines.h"
 #include "sim/rtl_library.h"
@@ -32,10 +35,10 @@ struct Target {
   std::string plugin;  // a plugin built by hand (e.g. from mutated RTL) instead of the lookup
 
   void add_options(CLI::App& cmd, bool with_build_option = true) {
-    cmd.add_option("--pipeline", pipeline,
+    cmd.add_option("pipeline,--pipeline", pipeline,
                    "pipeline name (default: the configuration's `pipeline` key)");
-    cmd.add_option("--config", config, "configuration file, e.g. configs/lirp/default.toml")
-        ->required();
+    cmd.add_option("--config", config,
+                   "configuration file (default: configs/<pipeline>/default.toml)");
     if (with_build_option) {
       cmd.add_flag("--no-build", no_build,
                    "fail instead of Verilating a configuration that is not built yet");
@@ -53,7 +56,15 @@ struct Loaded {
 };
 
 Loaded load(const Target& t) {
-  Loaded l{Config::load(t.config), nullptr, nullptr};
+  if (t.config.empty() && t.pipeline.empty()) {
+    throw Error("give a pipeline or --config (see phongsim list)");
+  }
+  if (!t.pipeline.empty()) (void)find_pipeline(t.pipeline);  // unknown: list the known ones
+  const std::string config =
+      !t.config.empty()
+          ? t.config
+          : (fs::path(PHONGSIM_SOURCE_DIR) / "configs" / t.pipeline / "default.toml").string();
+  Loaded l{Config::load(config), nullptr, nullptr};
   l.pipeline = &find_pipeline(t.pipeline.empty() ? l.cfg.pipeline() : t.pipeline);
   l.model = make_model(*l.pipeline, l.cfg);
   return l;
@@ -159,18 +170,103 @@ int cmd_bench(const Target& t, std::uint64_t vectors) {
   return 0;
 }
 
+int cmd_vectors(const Target& t, std::uint64_t seed, std::uint64_t random, bool directed,
+                const std::string& out) {
+  const Loaded l = load(t);
+  const Stimulus stimulus = l.pipeline->make_stimulus(*l.model);
+  const auto& fields = l.model->inputs();
+  OutputFile file(out);
+  std::string text;
+  for (std::size_t i = 0; i < fields.size(); ++i) text += (i ? "," : "") + fields[i].name;
+  text += "\n";
+  std::vector<std::int64_t> v(fields.size());
+  const std::uint64_t first = directed ? 0 : stimulus.directed_count();
+  const std::uint64_t last = stimulus.directed_count() + random;
+  for (std::uint64_t index = first; index < last; ++index) {
+    stimulus.vector(seed, index, v);
+    for (std::size_t i = 0; i < v.size(); ++i) text += fmt::format("{}{}", i ? "," : "", v[i]);
+    text += "\n";
+  }
+  std::fputs(text.c_str(), file.get());
+  file.commit();
+  fmt::print("{} vectors ({} directed + {} random, seed {}) -> {}\n", last - first,
+             directed ? stimulus.directed_count() : 0, random, seed, out);
+  return 0;
+}
+
+std::vector<fs::path> pipeline_configs(std::string_view pipeline) {
+  const fs::path dir = fs::path(PHONGSIM_SOURCE_DIR) / "configs" / pipeline;
+  std::vector<fs::path> files;
+  if (fs::is_directory(dir)) {
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().extension() == ".toml") files.push_back(e.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+int cmd_analyze(const std::string& pipeline, std::vector<std::string> configs,
+                std::uint64_t samples, std::uint64_t seed) {
+  if (pipeline != "lyon") {
+    (void)find_pipeline(pipeline);  // unknown names get the list of known ones
+    throw Error(fmt::format("no analysis for pipeline '{}' yet (available: lyon)", pipeline));
+  }
+  if (configs.empty()) {
+    for (const auto& f : pipeline_configs("lyon")) configs.push_back(f.string());
+  }
+  std::vector<Loaded> loaded;
+  for (const auto& c : configs) loaded.push_back(load(Target{"lyon", c}));
+  const auto model_of = [](const Loaded& l) -> const LyonModel& {
+    return dynamic_cast<const LyonModel&>(*l.model);
+  };
+  // The normalization table uses the first configuration that normalizes N.
+  const Loaded* norm_cfg = &loaded.front();
+  for (const auto& l : loaded) {
+    if (model_of(l).formats().norm > 0) {
+      norm_cfg = &l;
+      break;
+    }
+  }
+  const LyonModel& nm = model_of(*norm_cfg);
+  fmt::print("Approximate normalization: length of a vector after g (Lyon, Fig. 4)\n");
+  fmt::print("  {:>6}  {:>10}  {:>10}  {:>10}   fixed: {} (g{})\n", "length", "g1 float",
+             "g2 float", "fixed", norm_cfg->cfg.name(), nm.formats().norm);
+  for (const auto& r : lyon_norm_table(nm)) {
+    fmt::print("  {:>6.2f}  {:>10.5f}  {:>10.5f}  {:>10.5f}\n", r.length, r.g1, r.g2, r.fixed);
+  }
+  fmt::print("  at y = 1/2 (length 0.7071): g1 = {}, g2 = {}, exact 1/sqrt(1/2) = {:.4f}\n\n",
+             lyon::g1(0.5), lyon::g2(0.5), 1 / std::sqrt(0.5));
+
+  fmt::print("Shape function: max over alpha of |f_k(x) - cos^n alpha|, x = (n/2)|D|^2, float\n");
+  fmt::print("  {:>6}  {:>9}  {:>9}  {:>9}  {:>9}\n", "n", "k=0", "k=1", "k=2", "k=3");
+  for (const auto& r : lyon_shape_table()) {
+    fmt::print("  {:>6}  {:>9.6f}  {:>9.6f}  {:>9.6f}  {:>9.6f}\n", r.n, r.max_error[0],
+               r.max_error[1], r.max_error[2], r.max_error[3]);
+  }
+  fmt::print(
+      "\nFixed-point output against the float datapath (same quantized inputs), in output "
+      "LSBs; {} random pixels, seed {}\n",
+      samples, seed);
+  fmt::print("  {:<14} {:>9} {:>13} {:>9} {:>9} {:>9} {:>11}\n", "config", "spec max", "max n<=256",
+             "spec mean", "diff max", "diff mean", "highlights");
+  for (const auto& l : loaded) {
+    const LyonOutputError e = lyon_output_error(model_of(l), samples, seed);
+    fmt::print("  {:<14} {:>9.2f} {:>13.2f} {:>9.3f} {:>9.2f} {:>9.3f} {:>10.1f}%\n", l.cfg.name(),
+               e.spec_max, e.spec_max_low_n, e.spec_mean, e.diff_max, e.diff_mean,
+               100.0 * static_cast<double>(e.spec_nonzero) / static_cast<double>(e.samples));
+  }
+  for (const auto& l : loaded) {
+    fmt::print("\nStage formats of {} ({}, latency {} cycles)\n{}", l.cfg.origin(),
+               l.cfg.description(), model_of(l).latency(), lyon_stage_formats(model_of(l)));
+  }
+  return 0;
+}
+
 int cmd_list() {
-  const fs::path configs = fs::path(PHONGSIM_SOURCE_DIR) / "configs";
   for (const auto& p : pipelines()) {
     fmt::print("{:<8} {}\n", p.name, p.summary);
-    std::vector<fs::path> files;
-    if (fs::is_directory(configs / p.name)) {
-      for (const auto& e : fs::directory_iterator(configs / p.name)) {
-        if (e.path().extension() == ".toml") files.push_back(e.path());
-      }
-    }
-    std::sort(files.begin(), files.end());
-    for (const auto& f : files) {
+    for (const auto& f : pipeline_configs(p.name)) {
       const Config cfg = Config::load(f);
       fmt::print("  {:<40} {}\n", fs::relative(f, PHONGSIM_SOURCE_DIR).string(), cfg.description());
     }
@@ -264,6 +360,46 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--vectors", bench_vectors, "vectors per measurement")
       ->capture_default_str();
   bench_cmd->callback([&]() { action = [&]() { return cmd_bench(bench_target, bench_vectors); }; });
+
+  // vectors
+  Target vectors_target;
+  std::uint64_t vectors_seed = 1;
+  std::uint64_t vectors_random = 1000;
+  bool vectors_directed = true;
+  std::string vectors_out;
+  auto* vectors_cmd = app.add_subcommand(
+      "vectors", "Write the co-simulation stimulus (directed + seeded random) as an input CSV");
+  vectors_target.add_options(*vectors_cmd, false);
+  vectors_cmd->add_option("--vectors", vectors_random, "random vectors after the directed ones")
+      ->capture_default_str();
+  vectors_cmd->add_option("--seed", vectors_seed, "seed")->capture_default_str();
+  vectors_cmd->add_flag("!--no-directed", vectors_directed, "skip the directed corners");
+  vectors_cmd->add_option("--out", vectors_out, "output CSV (input of phongsim eval)")->required();
+  vectors_cmd->callback([&]() {
+    action = [&]() {
+      return cmd_vectors(vectors_target, vectors_seed, vectors_random, vectors_directed,
+                         vectors_out);
+    };
+  });
+
+  // analyze
+  std::string analyze_pipeline;
+  std::vector<std::string> analyze_configs;
+  std::uint64_t analyze_samples = 100000;
+  std::uint64_t analyze_seed = 1;
+  auto* analyze_cmd = app.add_subcommand(
+      "analyze", "Accuracy analysis of a pipeline: approximations and fixed-point error");
+  analyze_cmd->add_option("pipeline", analyze_pipeline, "pipeline (lyon)")->required();
+  analyze_cmd->add_option("--config", analyze_configs,
+                          "configuration(s) to analyze (default: every one in configs/<pipeline>)");
+  analyze_cmd->add_option("--samples", analyze_samples, "random pixels per configuration")
+      ->capture_default_str();
+  analyze_cmd->add_option("--seed", analyze_seed, "seed")->capture_default_str();
+  analyze_cmd->callback([&]() {
+    action = [&]() {
+      return cmd_analyze(analyze_pipeline, analyze_configs, analyze_samples, analyze_seed);
+    };
+  });
 
   // list
   app.add_subcommand("list", "Pipelines and their named configurations")->callback([&]() {

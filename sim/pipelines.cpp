@@ -6,6 +6,8 @@
 
 #include "model/error.h"
 #include "model/lirp.h"
+#include "model/lyon.h"
+#include "sim/lyon_stimulus.h"
 
 namespace phongsim {
 namespace {
@@ -43,9 +45,23 @@ Stimulus make_lirp_stimulus(const PipelineModel& model) {
   return Stimulus(model, std::move(directed));
 }
 
+// ---- lyon ----
+
+std::unique_ptr<PipelineModel> make_lyon_model(const Config& cfg) {
+  const LyonFormats formats = LyonFormats::from_config(cfg);
+  try {
+    return std::make_unique<LyonModel>(formats);
+  } catch (const Error& e) {
+    cfg.fail(e.what());
+  }
+}
+
 constexpr std::array kPipelines{
     PipelineInfo{"lirp", "LIRP unit: p = (1 - a)·p0 + a·p1 on 3-vectors (Lyon Fig. 7a)",
                  make_lirp_model, make_lirp_stimulus},
+    PipelineInfo{"lyon",
+                 "Lyon specular unit: LIRP, g1/g2 normalization, D, x, f_k (Figs. 7, 8), diffuse",
+                 make_lyon_model, make_lyon_stimulus},
 };
 
 }  // namespace

@@ -27,12 +27,22 @@ std::int64_t random_raw(Rng& rng, fx::Format fmt, std::span<const std::int64_t> 
   return fmt.min_raw() + static_cast<std::int64_t>(rng.below(span));
 }
 
-Stimulus::Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed)
-    : directed_(std::move(directed)) {
-  for (const auto& f : model.inputs()) {
+FieldRandom::FieldRandom(const std::vector<Field>& fields) {
+  for (const auto& f : fields) {
     formats_.push_back(f.fmt);
     corners_.push_back(corner_values(f.fmt));
   }
+}
+
+void FieldRandom::operator()(Rng& rng, std::span<std::int64_t> in) const {
+  for (std::size_t i = 0; i < formats_.size(); ++i)
+    in[i] = random_raw(rng, formats_[i], corners_[i]);
+}
+
+Stimulus::Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
+                   RandomFn random)
+    : directed_(std::move(directed)), random_(std::move(random)) {
+  if (!random_) random_ = FieldRandom(model.inputs());
 }
 
 void Stimulus::vector(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const {
@@ -41,8 +51,7 @@ void Stimulus::vector(std::uint64_t seed, std::uint64_t index, std::span<std::in
     return;
   }
   Rng rng(seed, kStimulusStream, index);
-  for (std::size_t i = 0; i < formats_.size(); ++i)
-    in[i] = random_raw(rng, formats_[i], corners_[i]);
+  random_(rng, in);
 }
 
 }  // namespace phongsim

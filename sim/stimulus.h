@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -23,8 +24,13 @@ namespace phongsim {
 
 class Stimulus {
  public:
+  // Fills one random input vector (raw values in the model's inputs() order) from `rng`.
+  using RandomFn = std::function<void(Rng& rng, std::span<std::int64_t> in)>;
+
   // `directed` holds complete input vectors (raw values in the model's inputs() order).
-  Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed);
+  // Random vectors come from `random` when given, otherwise field by field from random_raw().
+  Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
+           RandomFn random = {});
 
   [[nodiscard]] std::uint64_t directed_count() const { return directed_.size(); }
 
@@ -32,9 +38,20 @@ class Stimulus {
   void vector(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const;
 
  private:
-  std::vector<fx::Format> formats_;
-  std::vector<std::vector<std::int64_t>> corners_;  // corner_values() per input field
   std::vector<std::vector<std::int64_t>> directed_;
+  RandomFn random_;
+};
+
+// Field-by-field random values (random_raw with corner bias) for the given formats: the default
+// random stimulus, also available to pipelines that mix it with their own.
+class FieldRandom {
+ public:
+  explicit FieldRandom(const std::vector<Field>& fields);
+  void operator()(Rng& rng, std::span<std::int64_t> in) const;
+
+ private:
+  std::vector<fx::Format> formats_;
+  std::vector<std::vector<std::int64_t>> corners_;
 };
 
 }  // namespace phongsim

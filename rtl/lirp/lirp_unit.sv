@@ -1,8 +1,6 @@
 // lirp_unit: linear interpolation of 3-component vectors, p = (1 - a)·p0 + a·p1, the "LIRP" of
-// Lyon, TR #43, Fig. 7a (N' = LIRP(N0, N1, a)). Computed as p0 + a·(p1 - p0), which equals
-// Lyon's two-multiplier form exactly before the one rounding at the output ("an equivalent
-// linear interpolation hardware structure might merge the subtraction and two multipliers").
-// Numerical specification: docs/lirp.md.
+// Lyon, TR #43, Fig. 7a (N' = LIRP(N0, N1, a)), as a stream: lirp_core's two stages under a
+// pipe_ctrl, then the rounded result in an output skid buffer. Specification: docs/lirp.md.
 //
 //   stage diff:  diff = p1 - p0                     exact, fx_sub_fmt(P, P)
 //   stage prod:  prod = a · diff                    exact, fx_mul_fmt(A, Diff)
@@ -38,88 +36,41 @@ module lirp_unit #(
   output logic [3*OutW-1:0] out_p_o
 );
 
-  localparam int unsigned DiffFmt = fx_pkg::fx_sub_fmt(PFmt, PFmt);
-  localparam int unsigned ProdFmt = fx_pkg::fx_mul_fmt(AFmt, DiffFmt);
-  localparam int unsigned SumFmt  = fx_pkg::fx_add_fmt(PFmt, ProdFmt);
-  localparam int unsigned DiffW   = fx_pkg::fx_width(DiffFmt);
-  localparam int unsigned ProdW   = fx_pkg::fx_width(ProdFmt);
-  localparam int unsigned SumW    = fx_pkg::fx_width(SumFmt);
+  logic              core_valid, core_ready;
+  logic [       1:0] core_en;
+  logic [3*OutW-1:0] p_d;
 
-  // ---- Stage diff: diff = p1 - p0 ----
-  logic [3*DiffW-1:0] diff_d, diff_q;
-  logic [   3*PW-1:0] p0_q, p0_q2;
-  logic [     AW-1:0] a_q;
-  logic               diff_valid_q, diff_ready;
-
-  for (genvar c = 0; c < 3; c++) begin : g_diff
-    fx_sub #(.AFmt(PFmt), .BFmt(PFmt)) u_sub (
-      .a_i   (in_p1_i[c*PW+:PW]),
-      .b_i   (in_p0_i[c*PW+:PW]),
-      .diff_o(diff_d[c*DiffW+:DiffW])
-    );
-  end
-
-  stream_register #(.Width(3 * PW + AW + 3 * DiffW)) u_stage_diff (
+  pipe_ctrl #(.Depth(2)) u_ctrl (
     .clk_i,
     .rst_ni,
     .in_valid_i,
     .in_ready_o,
-    .in_data_i  ({in_p0_i, in_a_i, diff_d}),
-    .out_valid_o(diff_valid_q),
-    .out_ready_i(diff_ready),
-    .out_data_o ({p0_q, a_q, diff_q})
+    .out_valid_o(core_valid),
+    .out_ready_i(core_ready),
+    .en_o       (core_en)
   );
 
-  // ---- Stage prod: prod = a * diff ----
-  logic [3*ProdW-1:0] prod_d, prod_q;
-  logic               prod_valid_q, prod_ready;
-
-  for (genvar c = 0; c < 3; c++) begin : g_prod
-    fx_mul #(.AFmt(AFmt), .BFmt(DiffFmt)) u_mul (
-      .a_i   (a_q),
-      .b_i   (diff_q[c*DiffW+:DiffW]),
-      .prod_o(prod_d[c*ProdW+:ProdW])
-    );
-  end
-
-  stream_register #(.Width(3 * PW + 3 * ProdW)) u_stage_prod (
+  lirp_core #(
+    .PFmt       (PFmt),
+    .AFmt       (AFmt),
+    .OutFmt     (OutFmt),
+    .OutRound   (OutRound),
+    .OutOverflow(OutOverflow)
+  ) u_core (
     .clk_i,
-    .rst_ni,
-    .in_valid_i (diff_valid_q),
-    .in_ready_o (diff_ready),
-    .in_data_i  ({p0_q, prod_d}),
-    .out_valid_o(prod_valid_q),
-    .out_ready_i(prod_ready),
-    .out_data_o ({p0_q2, prod_q})
+    .en_i(core_en),
+    .p0_i(in_p0_i),
+    .p1_i(in_p1_i),
+    .a_i (in_a_i),
+    .p_o (p_d)
   );
-
-  // ---- Stage out: p = resize(p0 + prod) ----
-  logic [3*OutW-1:0] p_d;
-
-  for (genvar c = 0; c < 3; c++) begin : g_out
-    logic [SumW-1:0] sum;
-    fx_add #(.AFmt(PFmt), .BFmt(ProdFmt)) u_add (
-      .a_i  (p0_q2[c*PW+:PW]),
-      .b_i  (prod_q[c*ProdW+:ProdW]),
-      .sum_o(sum)
-    );
-    fx_resize #(
-      .InFmt   (SumFmt),
-      .OutFmt  (OutFmt),
-      .Round   (OutRound),
-      .Overflow(OutOverflow)
-    ) u_round (
-      .in_i (sum),
-      .out_o(p_d[c*OutW+:OutW])
-    );
-  end
 
   // The skid buffer registers the output and cuts the ready path from out_ready_i.
   stream_skid #(.Width(3 * OutW)) u_stage_out (
     .clk_i,
     .rst_ni,
-    .in_valid_i (prod_valid_q),
-    .in_ready_o (prod_ready),
+    .in_valid_i (core_valid),
+    .in_ready_o (core_ready),
     .in_data_i  (p_d),
     .out_valid_o,
     .out_ready_i,
