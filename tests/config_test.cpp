@@ -368,12 +368,13 @@ TEST(ConfigModel, LirpRefusesIncompleteOrUnknownKeys) {
 
 TEST(Pipelines, FindPipeline) {
   EXPECT_EQ(phongsim::find_pipeline("lirp").name, "lirp");
-  ASSERT_EQ(phongsim::pipelines().size(), 1u);
+  EXPECT_EQ(phongsim::find_pipeline("lyon").name, "lyon");
+  ASSERT_EQ(phongsim::pipelines().size(), 2u);
   EXPECT_EQ(phongsim::pipelines()[0].name, "lirp");
   EXPECT_EQ(ErrorOf([] { (void)phongsim::find_pipeline("nope"); }),
-            "unknown pipeline 'nope' (known: lirp)");
+            "unknown pipeline 'nope' (known: lirp, lyon)");
   EXPECT_EQ(ErrorOf([] { (void)phongsim::find_pipeline(""); }),
-            "unknown pipeline '' (known: lirp)");
+            "unknown pipeline '' (known: lirp, lyon)");
 }
 
 }  // namespace
