@@ -139,6 +139,15 @@ EOT
     "$phongsim" eval --config "$default" --in "$tmp/real.csv" --out "$tmp/real_out.csv" --real \
       || fail "eval --real failed"
     [ "$(tail -1 "$tmp/real_out.csv")" = "0.375,0.25,-0.5" ] || fail "real eval: $(cat "$tmp/real_out.csv")"
+    # Lyon: the co-simulation stimulus as a golden vector file, through both backends.
+    "$phongsim" vectors --config "$src/configs/lyon/fig8_k2.toml" --vectors 3000 --out "$tmp/lyon.csv" \
+      || fail "vectors failed"
+    for backend in model rtl; do
+      "$phongsim" eval --config "$src/configs/lyon/fig8_k2.toml" --backend $backend \
+        --in "$tmp/lyon.csv" --out "$tmp/lyon_$backend.csv" || fail "lyon eval $backend failed"
+    done
+    [ "$(wc -l <"$tmp/lyon_model.csv")" -eq "$(wc -l <"$tmp/lyon.csv")" ] || fail "lyon: row count"
+    cmp "$tmp/lyon_model.csv" "$tmp/lyon_rtl.csv" || fail "lyon: model and rtl outputs differ"
     ;;
 
   eval-errors)
