@@ -38,6 +38,7 @@ set(PHONGSIM_RTL_COMMON
     rtl/common/fx_scale.sv
     rtl/common/pipe_ctrl.sv
     rtl/common/pipe_delay.sv
+    rtl/common/fdiff_acc.sv
     rtl/common/stream_skid.sv)
 
 # Per pipeline: top module and its sources (package first).
@@ -48,7 +49,10 @@ set(PHONGSIM_RTL_lyon_TOP lyon_top)
 set(PHONGSIM_RTL_lyon_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_core.sv rtl/lyon/lyon_dot3.sv
     rtl/lyon/lyon_norm.sv rtl/lyon/lyon_x.sv rtl/lyon/lyon_shape.sv rtl/lyon/lyon_top.sv)
 
-set(PHONGSIM_PIPELINES lirp lyon)
+set(PHONGSIM_RTL_kb_TOP kb_engine)
+set(PHONGSIM_RTL_kb_SOURCES ${PHONGSIM_RTL_COMMON} rtl/kb/kb_engine.sv)
+
+set(PHONGSIM_PIPELINES lirp lyon kb)
 
 # phongsim_rtl_sources(<pipeline> <out-var>): absolute paths of the pipeline's RTL sources.
 function(phongsim_rtl_sources PIPELINE OUT)

@@ -12,7 +12,7 @@
 namespace phongsim {
 namespace {
 
-constexpr std::string_view kTables[] = {"format", "mode", "param"};
+constexpr std::string_view kTables[] = {"format", "mode", "param", "setup"};
 
 int line_of(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
 
@@ -51,7 +51,7 @@ Config Config::parse(std::string_view text, const std::string& origin) {
     if (std::find(std::begin(kTables), std::end(kTables), k) == std::end(kTables)) {
       throw Error(
           fmt::format("{}:{}: unknown top-level key '{}' (expected pipeline, description, "
-                      "[format], [mode], [param])",
+                      "[format], [mode], [param], [setup])",
                       origin, line_of(node), k));
     }
     const auto* table = node.as_table();
@@ -119,13 +119,34 @@ fx::Overflow Config::overflow(const std::string& key) const {
   }
 }
 
-std::int64_t Config::param(const std::string& key, std::int64_t lo, std::int64_t hi) const {
-  const Entry& e = entry("param", key);
+std::int64_t Config::integer(const std::string& table, const std::string& key, std::int64_t lo,
+                             std::int64_t hi) const {
+  const Entry& e = entry(table, key);
   if (!e.is_integer || e.integer < lo || e.integer > hi) {
-    throw Error(fmt::format("{}:{}: [param] {} = {} must be an integer in [{}, {}]", origin_,
-                            e.line, key, e.text, lo, hi));
+    throw Error(fmt::format("{}:{}: [{}] {} = {} must be an integer in [{}, {}]", origin_, e.line,
+                            table, key, e.text, lo, hi));
   }
   return e.integer;
+}
+
+std::int64_t Config::param(const std::string& key, std::int64_t lo, std::int64_t hi) const {
+  return integer("param", key, lo, hi);
+}
+
+std::int64_t Config::setup_integer(const std::string& key, std::int64_t lo, std::int64_t hi) const {
+  return integer("setup", key, lo, hi);
+}
+
+std::string Config::setup(const std::string& key,
+                          std::initializer_list<std::string_view> allowed) const {
+  const Entry& e = entry("setup", key);
+  for (const auto a : allowed) {
+    if (e.text == a) return e.text;
+  }
+  std::string list;
+  for (const auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+  throw Error(fmt::format("{}:{}: [setup] {} = '{}' (expected one of: {})", origin_, e.line, key,
+                          e.text, list));
 }
 
 void Config::check_all_used() const {

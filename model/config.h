@@ -7,6 +7,7 @@
 //   [format]  p = "S1.10"             # signal formats  -> -GPFmt=<fx_pkg format word>
 //   [mode]    out_round = "half_even" # named modes     -> -GOutRound=<encoding>
 //   [param]   k = 2                   # plain integers  -> -GK=2
+//   [setup]   policy = "d2_only"      # software-side choices (stimulus, setup); no RTL effect
 //
 // The pipeline's model asks for the keys it needs; any key it did not ask for is reported as
 // unknown by check_all_used(), so a typo cannot silently fall back to a default.
@@ -14,6 +15,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <string>
@@ -41,6 +43,11 @@ class Config {
   [[nodiscard]] fx::Round round(const std::string& key) const;
   [[nodiscard]] fx::Overflow overflow(const std::string& key) const;
   [[nodiscard]] std::int64_t param(const std::string& key, std::int64_t lo, std::int64_t hi) const;
+  // [setup] values: one of `allowed`, or an integer in [lo, hi].
+  [[nodiscard]] std::string setup(const std::string& key,
+                                  std::initializer_list<std::string_view> allowed) const;
+  [[nodiscard]] std::int64_t setup_integer(const std::string& key, std::int64_t lo,
+                                           std::int64_t hi) const;
 
   // Throws Error for the first key in the file that no accessor asked for.
   void check_all_used() const;
@@ -56,6 +63,8 @@ class Config {
     int line = 0;
   };
   const Entry& entry(const std::string& table, const std::string& key) const;
+  std::int64_t integer(const std::string& table, const std::string& key, std::int64_t lo,
+                       std::int64_t hi) const;
 
   std::string origin_;
   std::string name_;

@@ -28,6 +28,10 @@ mutants=(
   "lyon-fig8-w@configs/lyon/fig8_k1.toml@rtl/lyon/lyon_x.sv@/.OutFmt  (WFmt),/{n;s/.Round   (Round),/.Round   (fx_pkg::FxTruncate),/}@Fig. 8 squarer inputs truncated instead of rounded (one LSB)"
   "lyon-sqrt2@configs/lyon/fig8_k2.toml@rtl/lyon/lyon_x.sv@s/localparam int unsigned S         = (K + 2) \\/ 2;/localparam int unsigned S         = (K + 1) \\/ 2;/@Fig. 8 shift without the even-k sqrt(2) correction"
   "lyon-halfway@configs/lyon/halfway.toml@rtl/lyon/lyon_top.sv@s/.b_i  (vl_q1\\[c\\*VecW+:VecW\\]),/.b_i  (vl_q1[3*VecW+c*VecW+:VecW]),/@H = (L + L)/2 instead of (L + V)/2"
+  "kb-event-late@configs/kb/default.toml@rtl/kb/kb_engine.sv@s/(head_n <= i_q)/(head_n < i_q)/@events applied one pixel late"
+  "kb-reload@configs/kb/default.toml@rtl/kb/kb_engine.sv@s/assign d1_step = apply_event \\& head_reload ? head_d1 : d1;/assign d1_step = d1;/@reload of the first difference ignored"
+  "kb-d2-hold@configs/kb/d2_only.toml@rtl/kb/kb_engine.sv@s/      d2_q <= d2_step;/      d2_q <= d2_q;/@an event's second difference lasts one step only"
+  "kb-drain@configs/kb/default.toml@rtl/kb/kb_engine.sv@s/      remaining_q <= remaining_q - 1'b1;/      remaining_q <= remaining_q;/@left-over event words never dropped"
   "lyon-diffuse-delay@configs/lyon/default.toml@rtl/lyon/lyon_top.sv@s/pipe_delay #(.Width(DiffW), .Depth(Depth - 7))/pipe_delay #(.Width(DiffW), .Depth(Depth - 8))/@diffuse term one stage short: paired with the wrong pixel"
 )
 

@@ -241,13 +241,13 @@ std::string repro_command(const CosimReport& r, std::optional<std::uint64_t> onl
 
 // Where a failure happened and how to get it again: appended to every failure report.
 std::string failure_context(const CosimReport& r, std::optional<std::uint64_t> only,
-                            std::optional<std::uint64_t> failing_index) {
+                            std::optional<std::uint64_t> failing_index, bool independent) {
   const auto& o = r.options;
   std::string s =
       fmt::format("  pipeline {}, config {} ({}), seed {}, source idle {}, sink backpressure {}\n",
                   r.pipeline, r.config_name, r.config_path, o.seed, o.source.str(), o.sink.str());
   s += fmt::format("  reproduce: {}\n", repro_command(r, only));
-  if (failing_index && !only) {
+  if (failing_index && !only && independent) {
     s += fmt::format("  this vector alone: {}\n", repro_command(r, failing_index));
   }
   return s;
@@ -280,7 +280,7 @@ CosimReport cosim(const PipelineInfo& pipeline, const Config& cfg, PipelineModel
   r.config_name = cfg.name();
   r.config_path = cfg.origin();
   r.options = options;
-  const Stimulus stimulus = pipeline.make_stimulus(model);
+  const Stimulus stimulus = pipeline.make_stimulus(model, cfg);
   const std::uint64_t directed = options.directed ? stimulus.directed_count() : 0;
 
   // Main run: the requested stimulus under the requested stall patterns.
@@ -315,7 +315,8 @@ CosimReport cosim(const PipelineInfo& pipeline, const Config& cfg, PipelineModel
     r.mismatches = rejects_an_output(main.kind) ? 1 : 0;
     r.failure_kind = main.kind;
     const std::uint64_t fail_cycle = main.harness.cycles - 1;
-    r.failure = main.report + failure_context(r, options.only_index, main.failing_index);
+    r.failure = main.report + failure_context(r, options.only_index, main.failing_index,
+                                              pipeline.independent_vectors);
     if (!options.trace_path.empty()) {  // same run again, waveform only around the failure
       ho.trace_from = fail_cycle > options.trace_window ? fail_cycle - options.trace_window : 0;
       ho.trace_to = fail_cycle + 1;
@@ -344,8 +345,9 @@ CosimReport cosim(const PipelineInfo& pipeline, const Config& cfg, PipelineModel
       r.passed = false;
       r.mismatches = rejects_an_output(m.kind) ? 1 : 0;
       r.failure_kind = m.kind;
-      r.failure = m.report + "  (in the stall-free measurement run)\n" +
-                  failure_context(as_run, std::nullopt, m.failing_index);
+      r.failure =
+          m.report + "  (in the stall-free measurement run)\n" +
+          failure_context(as_run, std::nullopt, m.failing_index, pipeline.independent_vectors);
     } else if (m.harness.outputs > 1) {
       r.throughput =
           static_cast<double>(m.harness.outputs - 1) /

@@ -98,7 +98,8 @@ Stimulus make_lyon_stimulus(const PipelineModel& model) {
 
   // Random: half plausible geometry near the mirror direction, half arbitrary bits.
   const FieldRandom bits(model.inputs());
-  auto random = [f, bits](Rng& rng, std::span<std::int64_t> in) {
+  auto random = [f, bits](std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) {
+    Rng rng(seed, kStimulusStream, index);
     if (rng.below(2) == 0) {
       bits(rng, in);
       return;

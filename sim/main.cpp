@@ -12,11 +12,13 @@
 
 #include "model/config.h"
 #include "model/error.h"
+#include "model/kb_setup.h"
 #include "model/lyon.h"
 #include "model/lyon_float.h"
 #include "sim/bench.h"
 #include "sim/cosim.h"
 #include "sim/eval.h"
+#include "sim/kb_analysis.h"
 #include "sim/lyon_analysis.h"
 #include "sim/output_file.h"
 #include "sim/pipelines.h"
@@ -173,7 +175,7 @@ int cmd_bench(const Target& t, std::uint64_t vectors) {
 int cmd_vectors(const Target& t, std::uint64_t seed, std::uint64_t random, bool directed,
                 const std::string& out) {
   const Loaded l = load(t);
-  const Stimulus stimulus = l.pipeline->make_stimulus(*l.model);
+  const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
   const auto& fields = l.model->inputs();
   OutputFile file(out);
   std::string text;
@@ -206,11 +208,55 @@ std::vector<fs::path> pipeline_configs(std::string_view pipeline) {
   return files;
 }
 
+int analyze_kb(std::uint64_t samples, std::uint64_t seed) {
+  fmt::print("Three-piece quadratic against cos^n theta over [0, pi] (kb::max_error, rms_error)\n");
+  fmt::print("  {:>3}  {:>8} {:>8} {:>9} {:>9}   {:>8} {:>8} {:>9} {:>9}\n", "n", "a closed",
+             "b closed", "max", "rms", "a lsq", "b lsq", "max", "rms");
+  for (const KbFitRow& r : kb_fit_table()) {
+    fmt::print(
+        "  {:>3}  {:>8.5f} {:>8.5f} {:>9.6f} {:>9.6f}   {:>8.5f} {:>8.5f} {:>9.6f} {:>9.6f}\n", r.n,
+        r.closed.a, r.closed.b, r.closed_max, r.closed_rms, r.lsq.a, r.lsq.b, r.lsq_max, r.lsq_rms);
+  }
+  const int spans = static_cast<int>(std::max<std::uint64_t>(1, samples / 2000));
+  const fx::Format out{false, 0, 8};
+  const int lengths[] = {16, 64, 256, 1024, 4096};
+  const int guards[] = {0, 4, 8, 12, 16, 20, 24, 40};
+  for (const KbPolicy policy : {KbPolicy::exact_reload, KbPolicy::d2_only}) {
+    fmt::print(
+        "\nDrift: max |accumulator - exact span|, both clamped to [0, 1], in LSBs of an 8-bit "
+        "output; {} random spans per cell (1-2 terms, n 1..125), seed {}, policy {}\n",
+        spans, seed, policy == KbPolicy::d2_only ? "d2_only" : "exact_reload");
+    fmt::print("  {:>6}", "length");
+    for (const int g : guards) fmt::print(" {:>9}", fmt::format("G={}", g));
+    fmt::print("\n");
+    for (const int length : lengths) {
+      fmt::print("  {:>6}", length);
+      for (const int g : guards)
+        fmt::print(" {:>9.4f}", kb_drift(length, g, policy, out, spans, seed));
+      fmt::print("\n");
+    }
+  }
+  fmt::print(
+      "\nGuard bits for a drift of at most 1/2 output LSB (exact_reload): analytic bound "
+      "G >= log2((L^2 - L + 2)/2), and the smallest G that met it on the spans above\n");
+  fmt::print("  {:>6} {:>9} {:>9}\n", "length", "analytic", "measured");
+  for (const int length : lengths) {
+    int measured = 0;
+    while (measured < 40 &&
+           kb_drift(length, measured, KbPolicy::exact_reload, out, spans, seed) > 0.5) {
+      ++measured;
+    }
+    fmt::print("  {:>6} {:>9} {:>9}\n", length, kb_guard_bits_needed(length), measured);
+  }
+  return 0;
+}
+
 int cmd_analyze(const std::string& pipeline, std::vector<std::string> configs,
                 std::uint64_t samples, std::uint64_t seed) {
+  if (pipeline == "kb") return analyze_kb(samples, seed);
   if (pipeline != "lyon") {
     (void)find_pipeline(pipeline);  // unknown names get the list of known ones
-    throw Error(fmt::format("no analysis for pipeline '{}' yet (available: lyon)", pipeline));
+    throw Error(fmt::format("no analysis for pipeline '{}' yet (available: lyon, kb)", pipeline));
   }
   if (configs.empty()) {
     for (const auto& f : pipeline_configs("lyon")) configs.push_back(f.string());
@@ -389,7 +435,7 @@ int main(int argc, char** argv) {
   std::uint64_t analyze_seed = 1;
   auto* analyze_cmd = app.add_subcommand(
       "analyze", "Accuracy analysis of a pipeline: approximations and fixed-point error");
-  analyze_cmd->add_option("pipeline", analyze_pipeline, "pipeline (lyon)")->required();
+  analyze_cmd->add_option("pipeline", analyze_pipeline, "pipeline (lyon, kb)")->required();
   analyze_cmd->add_option("--config", analyze_configs,
                           "configuration(s) to analyze (default: every one in configs/<pipeline>)");
   analyze_cmd->add_option("--samples", analyze_samples, "random pixels per configuration")

@@ -5,8 +5,11 @@
 #include <array>
 
 #include "model/error.h"
+#include "model/kb.h"
+#include "model/kb_setup.h"
 #include "model/lirp.h"
 #include "model/lyon.h"
+#include "sim/kb_stimulus.h"
 #include "sim/lyon_stimulus.h"
 
 namespace phongsim {
@@ -26,7 +29,7 @@ std::unique_ptr<PipelineModel> make_lirp_model(const Config& cfg) {
 // Corner values of a and of the vector components, crossed so that every component sees every
 // corner against every other one, plus a values that make exact rounding ties (a = 1/4, 1/2,
 // 3/4 times an odd difference leaves exactly half an output LSB when a has more fraction bits).
-Stimulus make_lirp_stimulus(const PipelineModel& model) {
+Stimulus make_lirp_stimulus(const PipelineModel& model, const Config&) {
   const auto& f = dynamic_cast<const LirpModel&>(model).formats();
   const auto pc = corner_values(f.p);
   auto ac = corner_values(f.a);
@@ -56,12 +59,36 @@ std::unique_ptr<PipelineModel> make_lyon_model(const Config& cfg) {
   }
 }
 
+Stimulus make_lyon_stimulus_for(const PipelineModel& model, const Config&) {
+  return make_lyon_stimulus(model);
+}
+
+// ---- kb ----
+
+std::unique_ptr<PipelineModel> make_kb_model(const Config& cfg) {
+  const KbFormats formats = KbFormats::from_config(cfg);
+  (void)KbSetupOptions::from_config(cfg);  // the stimulus reads it; check it here
+  cfg.check_all_used();
+  try {
+    return std::make_unique<KbModel>(formats);
+  } catch (const Error& e) {
+    cfg.fail(e.what());
+  }
+}
+
+Stimulus make_kb_stimulus_for(const PipelineModel& model, const Config& cfg) {
+  return make_kb_stimulus(model, KbSetupOptions::from_config(cfg));
+}
+
 constexpr std::array kPipelines{
     PipelineInfo{"lirp", "LIRP unit: p = (1 - a)·p0 + a·p1 on 3-vectors (Lyon Fig. 7a)",
-                 make_lirp_model, make_lirp_stimulus},
+                 make_lirp_model, make_lirp_stimulus, true},
     PipelineInfo{"lyon",
                  "Lyon specular unit: LIRP, g1/g2 normalization, D, x, f_k (Figs. 7, 8), diffuse",
-                 make_lyon_model, make_lyon_stimulus},
+                 make_lyon_model, make_lyon_stimulus_for, true},
+    PipelineInfo{"kb",
+                 "Kuijk-Blake forward-differencing engine: piecewise-quadratic cos^n along spans",
+                 make_kb_model, make_kb_stimulus_for, false},
 };
 
 }  // namespace

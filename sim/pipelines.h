@@ -19,7 +19,10 @@ struct PipelineInfo {
   // intermediates would not fit the model's integers (Error naming the config file).
   std::unique_ptr<PipelineModel> (*make_model)(const Config& cfg);
   // Directed corner vectors plus seeded random vectors for this pipeline.
-  Stimulus (*make_stimulus)(const PipelineModel& model);
+  Stimulus (*make_stimulus)(const PipelineModel& model, const Config& cfg);
+  // True when every output depends only on its own input vector, so one vector can be re-run
+  // alone (--vector-index); false for pipelines with state between vectors.
+  bool independent_vectors;
 };
 
 [[nodiscard]] std::span<const PipelineInfo> pipelines();

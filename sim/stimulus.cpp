@@ -50,8 +50,7 @@ void Stimulus::vector(std::uint64_t seed, std::uint64_t index, std::span<std::in
     std::copy(directed_[index].begin(), directed_[index].end(), in.begin());
     return;
   }
-  Rng rng(seed, kStimulusStream, index);
-  random_(rng, in);
+  random_(seed, index, in);
 }
 
 }  // namespace phongsim

@@ -24,8 +24,11 @@ namespace phongsim {
 
 class Stimulus {
  public:
-  // Fills one random input vector (raw values in the model's inputs() order) from `rng`.
-  using RandomFn = std::function<void(Rng& rng, std::span<std::int64_t> in)>;
+  // Fills random input vector `index` (raw values in the model's inputs() order); a pure function
+  // of (seed, index). Most draw from Rng(seed, kStimulusStream, index); pipelines whose inputs
+  // come in groups (a span's words) derive the group from the index.
+  using RandomFn =
+      std::function<void(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in)>;
 
   // `directed` holds complete input vectors (raw values in the model's inputs() order).
   // Random vectors come from `random` when given, otherwise field by field from random_raw().
@@ -48,6 +51,10 @@ class FieldRandom {
  public:
   explicit FieldRandom(const std::vector<Field>& fields);
   void operator()(Rng& rng, std::span<std::int64_t> in) const;
+  void operator()(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const {
+    Rng rng(seed, kStimulusStream, index);
+    (*this)(rng, in);
+  }
 
  private:
   std::vector<fx::Format> formats_;

@@ -148,6 +148,16 @@ EOT
     done
     [ "$(wc -l <"$tmp/lyon_model.csv")" -eq "$(wc -l <"$tmp/lyon.csv")" ] || fail "lyon: row count"
     cmp "$tmp/lyon_model.csv" "$tmp/lyon_rtl.csv" || fail "lyon: model and rtl outputs differ"
+    # Kuijk–Blake: span programs in, pixels out (many rows per program).
+    "$phongsim" vectors --config "$src/configs/kb/d2_only.toml" --vectors 2000 --out "$tmp/kb.csv" \
+      || fail "kb vectors failed"
+    for backend in model rtl; do
+      "$phongsim" eval --config "$src/configs/kb/d2_only.toml" --backend $backend \
+        --in "$tmp/kb.csv" --out "$tmp/kb_$backend.csv" || fail "kb eval $backend failed"
+    done
+    [ "$(head -1 "$tmp/kb_model.csv")" = "value,last" ] || fail "kb: header"
+    [ "$(wc -l <"$tmp/kb_model.csv")" -gt 10000 ] || fail "kb: too few pixels"
+    cmp "$tmp/kb_model.csv" "$tmp/kb_rtl.csv" || fail "kb: model and rtl outputs differ"
     ;;
 
   eval-errors)

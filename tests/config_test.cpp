@@ -159,7 +159,7 @@ TEST(ConfigErrors, PipelineAndDescriptionMustBeStrings) {
 }
 
 TEST(ConfigErrors, UnknownTopLevelKey) {
-  const std::string list = " (expected pipeline, description, [format], [mode], [param])";
+  const std::string list = " (expected pipeline, description, [format], [mode], [param], [setup])";
   EXPECT_EQ(ParseError("pipeline = \"lirp\"\nformats = 3\n"),
             std::string(kOrigin) + ":2: unknown top-level key 'formats'" + list);
   EXPECT_EQ(ParseError("pipeline = \"lirp\"\n\n[modes]\nout_round = \"half_up\"\n"),
@@ -369,12 +369,12 @@ TEST(ConfigModel, LirpRefusesIncompleteOrUnknownKeys) {
 TEST(Pipelines, FindPipeline) {
   EXPECT_EQ(phongsim::find_pipeline("lirp").name, "lirp");
   EXPECT_EQ(phongsim::find_pipeline("lyon").name, "lyon");
-  ASSERT_EQ(phongsim::pipelines().size(), 2u);
+  ASSERT_EQ(phongsim::pipelines().size(), 3u);
   EXPECT_EQ(phongsim::pipelines()[0].name, "lirp");
   EXPECT_EQ(ErrorOf([] { (void)phongsim::find_pipeline("nope"); }),
-            "unknown pipeline 'nope' (known: lirp, lyon)");
+            "unknown pipeline 'nope' (known: lirp, lyon, kb)");
   EXPECT_EQ(ErrorOf([] { (void)phongsim::find_pipeline(""); }),
-            "unknown pipeline '' (known: lirp, lyon)");
+            "unknown pipeline '' (known: lirp, lyon, kb)");
 }
 
 }  // namespace

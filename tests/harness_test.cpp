@@ -266,7 +266,7 @@ class Cosim : public testing::Test {
   const phongsim::PipelineInfo& lirp_ = phongsim::find_pipeline("lirp");
   std::unique_ptr<phongsim::PipelineModel> model_ = phongsim::make_model(lirp_, cfg_);
   LirpFormats formats_ = dynamic_cast<const LirpModel&>(*model_).formats();
-  phongsim::Stimulus stimulus_ = lirp_.make_stimulus(*model_);
+  phongsim::Stimulus stimulus_ = lirp_.make_stimulus(*model_, cfg_);
 
   static CosimOptions Options(const std::string& source = "none",
                               const std::string& sink = "none") {

@@ -1,0 +1,82 @@
+#include "model/kb.h"
+
+#include <fmt/format.h>
+
+namespace phongsim {
+
+KbFormats KbFormats::from_config(const Config& cfg) {
+  KbFormats f;
+  f.acc = cfg.format("acc");
+  f.out = cfg.format("out");
+  f.out_round = cfg.round("out_round");
+  f.event_bits = static_cast<int>(cfg.param("event_bits", 1, 16));
+  if (!f.acc.is_signed) cfg.fail(fmt::format("[format] acc must be signed (got {})", f.acc.str()));
+  return f;
+}
+
+KbModel::KbModel(const KbFormats& formats) : f_(formats), sum_(fx::add_format(f_.acc, f_.acc)) {
+  inputs_ = {{"n", fx::Format{false, KbFormats::kIndexBits, 0}},
+             {"count", fx::Format{false, f_.event_bits, 0}},
+             {"f", f_.acc},
+             {"d1", f_.acc},
+             {"d2", f_.acc},
+             {"reload", fx::Format{false, 1, 0}}};
+  outputs_ = {{"value", f_.out}, {"last", fx::Format{false, 1, 0}}};
+}
+
+std::int64_t KbModel::wrap_add(std::int64_t a, std::int64_t b) const {
+  return fx::resize_raw(a + b, sum_, f_.acc, fx::Round::truncate, fx::Overflow::wrap);
+}
+
+std::int64_t KbModel::output(std::int64_t f) const {
+  // Clamp to [0, 1] in the accumulator format (1.0 only when the format can hold it).
+  const std::int64_t one = f_.acc.int_bits >= 1 ? std::int64_t{1} << f_.acc.frac_bits : 0;
+  std::int64_t c = f;
+  if (c < 0) {
+    c = 0;
+  } else if (f_.acc.int_bits >= 1 && c > one) {
+    c = one;
+  }
+  return fx::resize_raw(c, f_.acc, f_.out, f_.out_round, fx::Overflow::saturate);
+}
+
+void KbModel::pixel(std::int64_t d1_step, std::int64_t d2_step, std::vector<std::int64_t>& out) {
+  out.push_back(output(s_.f));
+  out.push_back(s_.i == s_.last ? 1 : 0);
+  if (trace_ != nullptr) trace_->push_back(s_.f);
+  s_.f = wrap_add(s_.f, d1_step);
+  s_.d1 = wrap_add(d1_step, d2_step);
+  s_.d2 = d2_step;
+  if (s_.i == s_.last) {
+    s_.running = false;
+  } else {
+    ++s_.i;
+  }
+}
+
+std::size_t KbModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  const std::size_t before = out.size();
+  const std::int64_t n = in[0];
+  if (!s_.running && s_.remaining == 0) {  // a header
+    s_.running = true;
+    s_.remaining = in[1];
+    s_.i = 0;
+    s_.last = n;
+    s_.f = in[2];
+    s_.d1 = in[3];
+    s_.d2 = in[4];
+  } else if (!s_.running) {  // an event word left over after its span: dropped
+    --s_.remaining;
+  } else {  // an event word: pixels before its index go out without it
+    while (s_.running && s_.i < n) pixel(s_.d1, s_.d2, out);
+    if (s_.running) {
+      pixel(in[5] != 0 ? in[3] : s_.d1, in[4], out);
+    }
+    --s_.remaining;
+  }
+  // Once no event can be due, the rest of the span goes out.
+  while (s_.running && s_.remaining == 0) pixel(s_.d1, s_.d2, out);
+  return (out.size() - before) / 2;
+}
+
+}  // namespace phongsim

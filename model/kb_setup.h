@@ -1,0 +1,55 @@
+// Span setup for the Kuijk–Blake engine (model/kb.h): from one or several angular terms along a
+// scanline to the engine's program words, with either transition policy. The float reference
+// is kb_exact(); docs/kb.md derives the error of each policy and the guard bits it needs.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/config.h"
+#include "model/kb.h"
+#include "model/kb_float.h"
+
+namespace phongsim {
+
+enum class KbPolicy {
+  d2_only,       // the paper: at a section change only Δ²f changes (one event per crossing)
+  exact_reload,  // Δf is reloaded with the exact difference wherever Δ²f changes
+};
+
+// Where (a, b) come from: the corrected closed forms or the project's least-squares table.
+enum class KbAbSource { closed_form, least_squares };
+
+// [setup] keys of a kb configuration: policy, ab, terms (the most terms a random span sums).
+struct KbSetupOptions {
+  KbPolicy policy = KbPolicy::exact_reload;
+  KbAbSource ab = KbAbSource::least_squares;
+  int max_terms = 2;
+  static KbSetupOptions from_config(const Config& cfg);
+};
+
+[[nodiscard]] kb::QuadParams kb_params(double n, KbAbSource source);
+
+// One term: f_t(i) = scale · quad(theta0 + i·dtheta) (angles in radians per pixel).
+struct KbTerm {
+  double theta0 = 0;
+  double dtheta = 0;
+  kb::QuadParams ab{};
+  double scale = 1;
+};
+
+struct KbSpan {
+  std::vector<KbTerm> terms;
+  int length = 1;  // pixels, 1..4096
+};
+
+// The exact span value at pixel i: the sum of the terms.
+[[nodiscard]] double kb_exact(const KbSpan& span, int i);
+
+// The program (header, then events; each word n, count, f, d1, d2, reload) that makes the engine
+// evaluate `span` with `policy`, values rounded to nearest (ties to even) in the accumulator
+// format. Throws Error when the span needs more events than the header's count can hold.
+[[nodiscard]] std::vector<std::vector<std::int64_t>> kb_program(const KbSpan& span, KbPolicy policy,
+                                                                const KbFormats& formats);
+
+}  // namespace phongsim
