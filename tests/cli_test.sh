@@ -79,8 +79,8 @@ case "$case_name" in
     echo 'k = 3' >>"$tmp/extra.toml"
     expect_error "extra.toml:10: \[mode\] k: unknown key" "$phongsim" cosim --config "$tmp/extra.toml"
     expect_error "unknown pipeline 'nope'" "$phongsim" cosim --pipeline nope --config "$default"
-    sed 's/pipeline = "lirp"/pipeline = "kb"/' "$default" >"$tmp/other.toml"
-    expect_error "unknown pipeline 'kb'" "$phongsim" cosim --config "$tmp/other.toml"
+    sed 's/pipeline = "lirp"/pipeline = "mystery"/' "$default" >"$tmp/other.toml"
+    expect_error "unknown pipeline 'mystery'" "$phongsim" cosim --config "$tmp/other.toml"
     no_outputs
     ;;
 
