@@ -36,6 +36,7 @@ set(PHONGSIM_RTL_COMMON
     rtl/common/fx_neg.sv
     rtl/common/fx_abs.sv
     rtl/common/fx_scale.sv
+    rtl/common/fx_clamp01.sv
     rtl/common/pipe_ctrl.sv
     rtl/common/pipe_delay.sv
     rtl/common/fdiff_acc.sv
@@ -52,7 +53,10 @@ set(PHONGSIM_RTL_lyon_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_core.sv rtl/l
 set(PHONGSIM_RTL_kb_TOP kb_engine)
 set(PHONGSIM_RTL_kb_SOURCES ${PHONGSIM_RTL_COMMON} rtl/kb/kb_engine.sv)
 
-set(PHONGSIM_PIPELINES lirp lyon kb)
+set(PHONGSIM_RTL_quad_TOP quad_walker)
+set(PHONGSIM_RTL_quad_SOURCES ${PHONGSIM_RTL_COMMON} rtl/quad/quad_channel.sv rtl/quad/quad_walker.sv)
+
+set(PHONGSIM_PIPELINES lirp lyon kb quad)
 
 # phongsim_rtl_sources(<pipeline> <out-var>): absolute paths of the pipeline's RTL sources.
 function(phongsim_rtl_sources PIPELINE OUT)

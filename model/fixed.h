@@ -194,6 +194,16 @@ struct Fixed {
   return {resize_raw(x.raw, x.fmt, to, round, overflow), to};
 }
 
+// Clamp to [0, 1] in the value's own format (fx_clamp01.sv): negative -> 0, above 1.0 -> 1.0
+// (a format without integer bits cannot exceed 1).
+[[nodiscard]] inline std::int64_t clamp01_raw(std::int64_t raw, Format fmt) {
+  if (raw < 0) return 0;
+  if (fmt.int_bits >= 1 && raw > (std::int64_t{1} << fmt.frac_bits)) {
+    return std::int64_t{1} << fmt.frac_bits;
+  }
+  return raw;
+}
+
 // Real <-> fixed. quantize() rounds x·2^frac per `round` and then handles overflow; throws Error
 // for NaN or infinity. round_scaled() is the rounding step alone (result is an integer-valued
 // double, or +-infinity when x·2^frac exceeds double's range), for callers that want to reject

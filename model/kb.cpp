@@ -29,15 +29,8 @@ std::int64_t KbModel::wrap_add(std::int64_t a, std::int64_t b) const {
 }
 
 std::int64_t KbModel::output(std::int64_t f) const {
-  // Clamp to [0, 1] in the accumulator format (1.0 only when the format can hold it).
-  const std::int64_t one = f_.acc.int_bits >= 1 ? std::int64_t{1} << f_.acc.frac_bits : 0;
-  std::int64_t c = f;
-  if (c < 0) {
-    c = 0;
-  } else if (f_.acc.int_bits >= 1 && c > one) {
-    c = one;
-  }
-  return fx::resize_raw(c, f_.acc, f_.out, f_.out_round, fx::Overflow::saturate);
+  return fx::resize_raw(fx::clamp01_raw(f, f_.acc), f_.acc, f_.out, f_.out_round,
+                        fx::Overflow::saturate);
 }
 
 void KbModel::pixel(std::int64_t d1_step, std::int64_t d2_step, std::vector<std::int64_t>& out) {

@@ -32,6 +32,10 @@ mutants=(
   "kb-reload@configs/kb/default.toml@rtl/kb/kb_engine.sv@s/assign d1_step = apply_event \\& head_reload ? head_d1 : d1;/assign d1_step = d1;/@reload of the first difference ignored"
   "kb-d2-hold@configs/kb/d2_only.toml@rtl/kb/kb_engine.sv@s/      d2_q <= d2_step;/      d2_q <= d2_q;/@an event's second difference lasts one step only"
   "kb-drain@configs/kb/default.toml@rtl/kb/kb_engine.sv@s/      remaining_q <= remaining_q - 1'b1;/      remaining_q <= remaining_q;/@left-over event words never dropped"
+  "quad-fill@configs/quad/default.toml@rtl/quad/quad_walker.sv@s/assign carry = sum >= {1'b0, d_q};/assign carry = sum > {1'b0, d_q};/@edge DDA carries one remainder step late: spans off by a pixel"
+  "quad-jump@configs/quad/default.toml@rtl/quad/quad_channel.sv@s/assign f_start = col_f + k_ext \\* g0_q + a_q \\* k_km1;/assign f_start = col_f + k_ext * g0_q;/@row start forgets the quadratic term a·k(k-1)"
+  "quad-column@configs/quad/default.toml@rtl/quad/quad_channel.sv@s/    .d2_step_i(c_q << 1),/    .d2_step_i(c_q),/@column second difference c instead of 2c"
+  "quad-clip@configs/quad/default.toml@rtl/quad/quad_walker.sv@s/{1'b0}}, x0_q});/{1'b0}}, x0_q}) - 1;/@span not clipped to the box on the left"
   "lyon-diffuse-delay@configs/lyon/default.toml@rtl/lyon/lyon_top.sv@s/pipe_delay #(.Width(DiffW), .Depth(Depth - 7))/pipe_delay #(.Width(DiffW), .Depth(Depth - 8))/@diffuse term one stage short: paired with the wrong pixel"
 )
 

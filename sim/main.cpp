@@ -15,6 +15,7 @@
 #include "model/kb_setup.h"
 #include "model/lyon.h"
 #include "model/lyon_float.h"
+#include "model/quad_setup.h"
 #include "sim/bench.h"
 #include "sim/cosim.h"
 #include "sim/eval.h"
@@ -22,6 +23,8 @@
 #include "sim/lyon_analysis.h"
 #include "sim/output_file.h"
 #include "sim/pipelines.h"
+#include "sim/quad_analysis.h"
+#include "sim/quad_stimulus.h"
 #include "sim/rtl_library.h"
 
 namespace {
@@ -251,12 +254,62 @@ int analyze_kb(std::uint64_t samples, std::uint64_t seed) {
   return 0;
 }
 
+int analyze_quad(std::uint64_t samples, std::uint64_t seed) {
+  const int triangles = static_cast<int>(std::max<std::uint64_t>(1, samples / 5000));
+  const fx::Format out{false, 0, 8};
+  const int sizes[] = {16, 64, 256, 1024};
+  const int guards[] = {0, 4, 8, 12, 16, 20, 24, 40};
+  fmt::print(
+      "Drift: max |accumulator - r(s, t) evaluated directly (eqs. 4.1, 4.3)|, both clamped "
+      "to [0, 1], in LSBs of an 8-bit output; {} random triangles with vertices in a "
+      "size x size box per cell, quadratic colours, seed {}\n",
+      triangles, seed);
+  fmt::print("  {:>5}", "size");
+  for (const int g : guards) fmt::print(" {:>9}", fmt::format("G={}", g));
+  fmt::print("\n");
+  for (const int size : sizes) {
+    fmt::print("  {:>5}", size);
+    for (const int g : guards) fmt::print(" {:>9.4f}", quad_drift(size, g, out, triangles, seed));
+    fmt::print("\n");
+  }
+  fmt::print(
+      "\nGuard bits for a drift of at most 1/2 output LSB over a box: analytic bound "
+      "G >= log2(1 + (w-1)^2 + (w-1)(h-1) + (h-1)^2), and the smallest G that met it on "
+      "the triangles above\n");
+  fmt::print("  {:>5} {:>9} {:>9}\n", "size", "analytic", "measured");
+  for (const int size : sizes) {
+    int measured = 0;
+    while (measured < 40 && quad_drift(size, measured, out, triangles, seed) > 0.5) ++measured;
+    fmt::print("  {:>5} {:>9} {:>9}\n", size, quad_guard_bits_needed(size, size), measured);
+  }
+  fmt::print(
+      "\nOutput against direct evaluation, per configuration: |output - r(s, t)|, r clamped to the "
+      "output range, in "
+      "output LSBs over {} random triangles of the co-simulation's distribution (boxes up to "
+      "1024 pixels), colours of the configuration's [setup] mode, seed {}\n",
+      triangles * 10, seed);
+  fmt::print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9} {:>9}\n", "config", "mode", "acc", "out",
+             "pixels", "max", "mean");
+  for (const auto& file : pipeline_configs("quad")) {
+    const Loaded l = load(Target{"quad", file.string()});
+    const QuadFormats f = QuadFormats::from_config(l.cfg);
+    const QuadMode mode = quad_mode(l.cfg);
+    const QuadOutputError e = quad_output_error(f, mode, triangles * 10, seed);
+    fmt::print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9.4f} {:>9.4f}\n", l.cfg.name(),
+               mode == QuadMode::linear ? "linear" : "quadratic", f.acc.str(), f.out.str(),
+               e.pixels, e.max, e.mean);
+  }
+  return 0;
+}
+
 int cmd_analyze(const std::string& pipeline, std::vector<std::string> configs,
                 std::uint64_t samples, std::uint64_t seed) {
   if (pipeline == "kb") return analyze_kb(samples, seed);
+  if (pipeline == "quad") return analyze_quad(samples, seed);
   if (pipeline != "lyon") {
     (void)find_pipeline(pipeline);  // unknown names get the list of known ones
-    throw Error(fmt::format("no analysis for pipeline '{}' yet (available: lyon, kb)", pipeline));
+    throw Error(
+        fmt::format("no analysis for pipeline '{}' yet (available: lyon, kb, quad)", pipeline));
   }
   if (configs.empty()) {
     for (const auto& f : pipeline_configs("lyon")) configs.push_back(f.string());
@@ -435,7 +488,7 @@ int main(int argc, char** argv) {
   std::uint64_t analyze_seed = 1;
   auto* analyze_cmd = app.add_subcommand(
       "analyze", "Accuracy analysis of a pipeline: approximations and fixed-point error");
-  analyze_cmd->add_option("pipeline", analyze_pipeline, "pipeline (lyon, kb)")->required();
+  analyze_cmd->add_option("pipeline", analyze_pipeline, "pipeline (lyon, kb, quad)")->required();
   analyze_cmd->add_option("--config", analyze_configs,
                           "configuration(s) to analyze (default: every one in configs/<pipeline>)");
   analyze_cmd->add_option("--samples", analyze_samples, "random pixels per configuration")

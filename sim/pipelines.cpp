@@ -9,8 +9,10 @@
 #include "model/kb_setup.h"
 #include "model/lirp.h"
 #include "model/lyon.h"
+#include "model/quad.h"
 #include "sim/kb_stimulus.h"
 #include "sim/lyon_stimulus.h"
+#include "sim/quad_stimulus.h"
 
 namespace phongsim {
 namespace {
@@ -80,6 +82,19 @@ Stimulus make_kb_stimulus_for(const PipelineModel& model, const Config& cfg) {
   return make_kb_stimulus(model, KbSetupOptions::from_config(cfg));
 }
 
+// ---- quad ----
+
+std::unique_ptr<PipelineModel> make_quad_model(const Config& cfg) {
+  const QuadFormats formats = QuadFormats::from_config(cfg);
+  (void)quad_mode(cfg);  // the stimulus reads it; check it here
+  cfg.check_all_used();
+  return std::make_unique<QuadModel>(formats);
+}
+
+Stimulus make_quad_stimulus_for(const PipelineModel& model, const Config& cfg) {
+  return make_quad_stimulus(model, quad_mode(cfg));
+}
+
 constexpr std::array kPipelines{
     PipelineInfo{"lirp", "LIRP unit: p = (1 - a)·p0 + a·p1 on 3-vectors (Lyon Fig. 7a)",
                  make_lirp_model, make_lirp_stimulus, true},
@@ -89,6 +104,9 @@ constexpr std::array kPipelines{
     PipelineInfo{"kb",
                  "Kuijk-Blake forward-differencing engine: piecewise-quadratic cos^n along spans",
                  make_kb_model, make_kb_stimulus_for, false},
+    PipelineInfo{"quad",
+                 "Quadratic/linear colour interpolator: triangle walker, forward differencing",
+                 make_quad_model, make_quad_stimulus_for, true},
 };
 
 }  // namespace

@@ -158,6 +158,15 @@ EOT
     [ "$(head -1 "$tmp/kb_model.csv")" = "value,last" ] || fail "kb: header"
     [ "$(wc -l <"$tmp/kb_model.csv")" -gt 10000 ] || fail "kb: too few pixels"
     cmp "$tmp/kb_model.csv" "$tmp/kb_rtl.csv" || fail "kb: model and rtl outputs differ"
+    # Quadratic interpolator: triangle programs in, pixels out.
+    "$phongsim" vectors --config "$src/configs/quad/linear.toml" --vectors 200 --out "$tmp/quad.csv" \
+      || fail "quad vectors failed"
+    for backend in model rtl; do
+      "$phongsim" eval --config "$src/configs/quad/linear.toml" --backend $backend \
+        --in "$tmp/quad.csv" --out "$tmp/quad_$backend.csv" || fail "quad eval $backend failed"
+    done
+    [ "$(head -1 "$tmp/quad_model.csv")" = "x,y,r,g,b" ] || fail "quad: header"
+    cmp "$tmp/quad_model.csv" "$tmp/quad_rtl.csv" || fail "quad: model and rtl outputs differ"
     ;;
 
   eval-errors)

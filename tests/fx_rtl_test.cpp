@@ -25,6 +25,7 @@ Fixed expected(const FxCosimCase& c, std::uint64_t a_bits) {
   if (op == "neg") return neg(a);
   if (op == "abs") return abs(a);
   if (op == "scale") return scale(a, std::stoi(c.b));
+  if (op == "clamp01") return Fixed{clamp01_raw(a.raw, fa), fa};
   const Format fb = Format::parse(c.b);
   const Fixed b{from_bits(a_bits >> 8, fb), fb};
   if (op == "add") return add(a, b);

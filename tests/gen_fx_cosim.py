@@ -39,6 +39,10 @@ SCALE = [("S3.4", 2), ("S3.4", 6), ("S3.4", -2), ("S3.4", -5), ("4.4", 5), ("4.4
          ("S0.7", -1), ("8.0", 3), ("S7.0", -8)]
 
 
+# Clamping to [0, 1]: signed with and without room above 1.0, unsigned.
+CLAMP = ["S3.4", "S2.5", "S0.7", "4.4", "0.8"]
+
+
 def cases():
     for a, b in RESIZE:
         for r in ROUNDS:
@@ -52,12 +56,16 @@ def cases():
         yield ("abs", a, "", "", "")
     for a, k in SCALE:
         yield ("scale", a, str(k), "", "")
+    for a in CLAMP:
+        yield ("clamp01", a, "", "", "")
 
 
 def width_expr(op, a, b):
     fa = format_word(a)
     if op == "scale":
         return f"fx_pkg::fx_width(fx_pkg::fx_scale_fmt({fa}, {b}))"
+    if op == "clamp01":
+        return f"fx_pkg::fx_width({fa})"
     fb = format_word(b) if b else 0
     result = {
         "resize": f"{fb}",
@@ -83,6 +91,8 @@ def instance(i, op, a, b, rnd, ovf):
         lines.append(f"  fx_neg #(.AFmt({fa})) u{i} (.a_i(a_i[{wa}-1:0]), .neg_o(r{i}));")
     elif op == "abs":
         lines.append(f"  fx_abs #(.AFmt({fa})) u{i} (.a_i(a_i[{wa}-1:0]), .abs_o(r{i}));")
+    elif op == "clamp01":
+        lines.append(f"  fx_clamp01 #(.AFmt({fa})) u{i} (.a_i(a_i[{wa}-1:0]), .clamped_o(r{i}));")
     elif op == "scale":
         lines.append(f"  fx_scale #(.AFmt({fa}), .Shift({b})) u{i} (.a_i(a_i[{wa}-1:0]), "
                      f".scaled_o(r{i}));")

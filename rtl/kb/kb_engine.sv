@@ -132,23 +132,11 @@ module kb_engine #(
   end
 
   // ---- Output: clamp to [0, 1], round, skid buffer ----
-  localparam int unsigned AccFrac = fx_pkg::fx_frac(AccFmt);
-  localparam int unsigned AccInt  = fx_pkg::fx_int(AccFmt);
   logic [AccW-1:0] clamped;
-  if (AccInt >= 1) begin : g_clamp_one
-    localparam logic [AccW-1:0] One = AccW'(1) << AccFrac;
-    always_comb begin
-      if (f[AccW-1]) begin
-        clamped = '0;
-      end else if (f > One) begin
-        clamped = One;
-      end else begin
-        clamped = f;
-      end
-    end
-  end else begin : g_below_one
-    assign clamped = f[AccW-1] ? '0 : f;
-  end
+  fx_clamp01 #(.AFmt(AccFmt)) u_clamp (
+    .a_i      (f),
+    .clamped_o(clamped)
+  );
   logic [OutW-1:0] value;
   fx_resize #(
     .InFmt   (AccFmt),

@@ -1,0 +1,136 @@
+#include "model/quad.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace phongsim {
+
+QuadFormats QuadFormats::from_config(const Config& cfg) {
+  QuadFormats f;
+  f.acc = cfg.format("acc");
+  f.out = cfg.format("out");
+  f.out_round = cfg.round("out_round");
+  f.sub_bits = static_cast<int>(cfg.param("sub_bits", 1, 8));
+  if (!f.acc.is_signed) cfg.fail(fmt::format("[format] acc must be signed (got {})", f.acc.str()));
+  return f;
+}
+
+QuadModel::QuadModel(const QuadFormats& formats) : f_(formats) {
+  const fx::Format coord{false, QuadFormats::kCoordBits, 0};
+  const fx::Format q{true, f_.q_bits() - 1, 0};
+  const fx::Format r{false, f_.r_bits(), 0};
+  for (const char* n : {"x0", "y0", "x1", "y1"}) inputs_.push_back({n, coord});
+  for (int k = 0; k < 3; ++k) {
+    inputs_.push_back({fmt::format("e{}_kind", k), fx::Format{false, 2, 0}});
+    inputs_.push_back({fmt::format("e{}_q", k), q});
+    inputs_.push_back({fmt::format("e{}_r", k), r});
+    inputs_.push_back({fmt::format("e{}_d", k), r});
+    inputs_.push_back({fmt::format("e{}_dq", k), q});
+    inputs_.push_back({fmt::format("e{}_dr", k), r});
+  }
+  for (const char* ch : {"r", "g", "b"}) {
+    for (const char* w : {"f", "gy", "gx", "a", "b", "c"}) {
+      inputs_.push_back({fmt::format("{}_{}", ch, w), f_.acc});
+    }
+  }
+  outputs_ = {{"x", coord}, {"y", coord}, {"r", f_.out}, {"g", f_.out}, {"b", f_.out}};
+}
+
+QuadProgram QuadModel::program(std::span<const std::int64_t> in) {
+  QuadProgram p;
+  p.x0 = static_cast<int>(in[0]);
+  p.y0 = static_cast<int>(in[1]);
+  p.x1 = static_cast<int>(in[2]);
+  p.y1 = static_cast<int>(in[3]);
+  for (int k = 0; k < 3; ++k) {
+    const auto w = in.subspan(4 + 6 * k, 6);
+    p.edges[k] = {static_cast<int>(w[0]), w[1], w[2], w[3], w[4], w[5]};
+  }
+  for (int c = 0; c < 3; ++c) {
+    const auto w = in.subspan(22 + 6 * c, 6);
+    p.channels[c] = {w[0], w[1], w[2], w[3], w[4], w[5]};
+  }
+  return p;
+}
+
+std::vector<std::int64_t> QuadModel::words(const QuadProgram& p) {
+  std::vector<std::int64_t> w{p.x0, p.y0, p.x1, p.y1};
+  for (const auto& e : p.edges) w.insert(w.end(), {e.kind, e.q, e.r, e.d, e.dq, e.dr});
+  for (const auto& c : p.channels) w.insert(w.end(), {c.f, c.gy, c.gx, c.a, c.b, c.c});
+  return w;
+}
+
+std::size_t QuadModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  return walk(program(in), out);
+}
+
+std::size_t QuadModel::walk(const QuadProgram& p, std::vector<std::int64_t>& out,
+                            std::vector<std::int64_t>* accumulators) const {
+  if (p.y0 > p.y1) return 0;
+  const fx::Format qf{true, f_.q_bits() - 1, 0};
+  const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+  // Column accumulators per channel (at offset i = 0): F, GY, G0.
+  std::array<std::int64_t, 3> col_f{}, col_gy{}, g0{};
+  for (int c = 0; c < 3; ++c) {
+    col_f[c] = p.channels[c].f;
+    col_gy[c] = p.channels[c].gy;
+    g0[c] = p.channels[c].gx;
+  }
+  std::array<std::int64_t, 3> q{}, r{};
+  for (int k = 0; k < 3; ++k) {
+    q[k] = p.edges[k].q;
+    r[k] = p.edges[k].r;
+  }
+  std::size_t pixels = 0;
+  for (int y = p.y0;; ++y) {
+    // The row's span.
+    std::int64_t lower = p.x0;
+    std::int64_t upper = p.x1;
+    for (int k = 0; k < 3; ++k) {
+      if (p.edges[k].kind == 1) lower = std::max(lower, -q[k]);
+      if (p.edges[k].kind == 2) upper = std::min(upper, q[k]);
+    }
+    if (lower <= upper) {
+      const std::int64_t k = lower - p.x0;
+      std::array<std::int64_t, 3> f{}, g{};
+      for (int c = 0; c < 3; ++c) {
+        const QuadChannel& ch = p.channels[c];
+        // f = F + k·G0 + a·k(k - 1);  g = G0 + 2a·k   (modulo 2^width, as the RTL)
+        f[c] = wrap(u(col_f[c]) + u(k) * u(g0[c]) + u(ch.a) * (u(k) * (u(k) - 1)));
+        g[c] = wrap(u(g0[c]) + ((u(ch.a) * u(k)) << 1));
+      }
+      for (std::int64_t x = lower; x <= upper; ++x) {
+        out.push_back(x);
+        out.push_back(y);
+        for (int c = 0; c < 3; ++c) {
+          out.push_back(fx::resize_raw(fx::clamp01_raw(f[c], f_.acc), f_.acc, f_.out, f_.out_round,
+                                       fx::Overflow::saturate));
+          if (accumulators != nullptr) accumulators->push_back(f[c]);
+          f[c] = wrap(u(f[c]) + u(g[c]));
+          g[c] = wrap(u(g[c]) + (u(p.channels[c].a) << 1));
+        }
+        ++pixels;
+      }
+    }
+    if (y == p.y1) break;
+    // Next row: column accumulators and edge DDAs.
+    for (int c = 0; c < 3; ++c) {
+      col_f[c] = wrap(u(col_f[c]) + u(col_gy[c]));
+      col_gy[c] = wrap(u(col_gy[c]) + (u(p.channels[c].c) << 1));
+      g0[c] = wrap(u(g0[c]) + u(p.channels[c].b));
+    }
+    for (int k = 0; k < 3; ++k) {
+      const QuadEdge& e = p.edges[k];
+      const std::int64_t sum = r[k] + e.dr;  // r, dr < 2^r_bits: no overflow
+      const bool carry = static_cast<std::uint64_t>(sum) >= static_cast<std::uint64_t>(e.d);
+      q[k] = fx::from_bits(u(q[k]) + u(e.dq) + (carry ? 1U : 0U), qf);
+      r[k] = carry ? sum - e.d : sum;
+      r[k] = static_cast<std::int64_t>(static_cast<std::uint64_t>(r[k]) &
+                                       ((std::uint64_t{1} << f_.r_bits()) - 1));
+    }
+  }
+  return pixels;
+}
+
+}  // namespace phongsim

@@ -1,0 +1,73 @@
+// Bit-accurate model of rtl/quad/quad_walker.sv: one triangle program in, its covered pixels
+// (x, y, R, G, B) out, row by row. The setup that writes programs is model/quad_setup.h.
+// Specification: docs/quad.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "model/config.h"
+#include "model/fixed.h"
+#include "model/pipeline.h"
+
+namespace phongsim {
+
+struct QuadFormats {
+  fx::Format acc;  // channel accumulators (signed)
+  fx::Format out;  // colour output
+  fx::Round out_round = fx::Round::half_even;
+  int sub_bits = 4;  // subpixel bits of the vertices (1..8): sets the edge DDA widths
+
+  static constexpr int kCoordBits = 11;                           // screens up to 2048 x 2048
+  [[nodiscard]] int q_bits() const { return 26 + 2 * sub_bits; }  // DDA quotient, signed
+  [[nodiscard]] int r_bits() const { return 12 + 2 * sub_bits; }  // DDA remainder and divisor
+
+  // Reads [format] acc, out; [mode] out_round; [param] sub_bits.
+  static QuadFormats from_config(const Config& cfg);
+};
+
+// One edge's DDA words (quad_walker: {kind, q, r, d, dq, dr}).
+struct QuadEdge {
+  int kind = 0;  // 0 unused, 1 lower bound (x >= -q), 2 upper bound (x <= q)
+  std::int64_t q = 0, r = 0, d = 1, dq = 0, dr = 0;
+};
+
+// One channel's words: value, row difference, column difference at the origin pixel, and the
+// quadratic coefficients a, b, c (pixel units), all raw in QuadFormats::acc.
+struct QuadChannel {
+  std::int64_t f = 0, gy = 0, gx = 0, a = 0, b = 0, c = 0;
+};
+
+struct QuadProgram {
+  int x0 = 0, y0 = 1, x1 = 0, y1 = 0;  // pixel box; y0 > y1: no rows
+  std::array<QuadEdge, 3> edges{};
+  std::array<QuadChannel, 3> channels{};  // R, G, B
+};
+
+class QuadModel final : public PipelineModel {
+ public:
+  explicit QuadModel(const QuadFormats& formats);
+
+  [[nodiscard]] const QuadFormats& formats() const { return f_; }
+
+  // Fields: x0 y0 x1 y1; e<k>_{kind,q,r,d,dq,dr} for k = 0..2; {r,g,b}_{f,gy,gx,a,b,c};
+  // outputs x y r g b.
+  std::size_t eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) override;
+
+  // The same from a program; `accumulators` (optional) receives each pixel's three channel
+  // accumulator values before clamping and rounding (for the drift analysis).
+  std::size_t walk(const QuadProgram& p, std::vector<std::int64_t>& out,
+                   std::vector<std::int64_t>* accumulators = nullptr) const;
+
+  // Program <-> input words (inputs() order).
+  [[nodiscard]] static QuadProgram program(std::span<const std::int64_t> in);
+  [[nodiscard]] static std::vector<std::int64_t> words(const QuadProgram& p);
+
+ private:
+  // a + b modulo 2^width(acc), as the RTL's adders and multipliers.
+  [[nodiscard]] std::int64_t wrap(std::uint64_t bits) const { return fx::from_bits(bits, f_.acc); }
+
+  QuadFormats f_;
+};
+
+}  // namespace phongsim

@@ -1,0 +1,207 @@
+// quad_walker: the quadratic (or linear) colour interpolator of Vlasic §4.3 in hardware: walks
+// one triangle per program and emits (x, y, R, G, B) for every covered pixel, one per clock.
+//
+// Coverage is by span: for each row the program's three edge DDAs give the row's first and last
+// covered pixel exactly (edge functions with the top-left fill rule, divided by the setup, then
+// advanced per row with additions only: q <- q + dq + carry, r <- r + dr - carry·d, where carry =
+// r + dr >= d; a "lower" edge bounds x from below by -q, an "upper" edge from above by q). The
+// colour of each channel is forward differenced (quad_channel). A linear (Gouraud) triangle is
+// the same program with a = b = c = 0.
+//
+// Cycles: one per row of the program's row range (the row's span is set up) plus one per
+// covered pixel; a triangle's program is read in the cycle its last row finishes, so triangles
+// stream without further gaps; a program with no rows costs one cycle. Specification and fill
+// rule: docs/quad.md.
+//
+// Parameters: AccFmt - signed accumulator format of the channels; OutFmt, OutRound - colour
+//             output; SubBits - subpixel bits of the setup (sets the DDA widths).
+// Ports: clk_i, rst_ni; in_* - the program (bbox {x0, y0, x1, y1}; per edge {kind, q, r, d, dq,
+//        dr}; per channel {f, gy, gx, a, b, c}), fields packed from the LSB; out_* - pixels.
+module quad_walker #(
+  parameter int unsigned AccFmt   = fx_pkg::fx_fmt(1'b1, 2, 32),
+  parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b0, 0, 8),
+  parameter int unsigned OutRound = fx_pkg::FxHalfEven,
+  parameter int unsigned SubBits  = 4,
+  // Derived, do not override.
+  localparam int unsigned AccW    = fx_pkg::fx_width(AccFmt),
+  localparam int unsigned OutW    = fx_pkg::fx_width(OutFmt),
+  localparam int unsigned CoordW  = 11,                 // screens up to 2048 x 2048
+  localparam int unsigned QW      = 26 + 2 * SubBits,   // DDA quotient (signed)
+  localparam int unsigned RW      = 12 + 2 * SubBits,   // DDA remainder and divisor
+  localparam int unsigned EdgeW   = 2 + 2 * QW + 3 * RW,
+  localparam int unsigned ChanW   = 6 * AccW
+) (
+  input  logic              clk_i,
+  input  logic              rst_ni,
+  input  logic              in_valid_i,
+  output logic              in_ready_o,
+  input  logic [4*CoordW-1:0] in_bbox_i,
+  input  logic [   EdgeW-1:0] in_edge0_i,
+  input  logic [   EdgeW-1:0] in_edge1_i,
+  input  logic [   EdgeW-1:0] in_edge2_i,
+  input  logic [   ChanW-1:0] in_red_i,
+  input  logic [   ChanW-1:0] in_green_i,
+  input  logic [   ChanW-1:0] in_blue_i,
+  output logic              out_valid_o,
+  input  logic              out_ready_i,
+  output logic [  CoordW-1:0] out_x_o,
+  output logic [  CoordW-1:0] out_y_o,
+  output logic [  3*OutW-1:0] out_rgb_o
+);
+
+  localparam int unsigned ProgW = 4 * CoordW + 3 * EdgeW + 3 * ChanW;
+  localparam logic [1:0] KindLower = 2'd1;
+  localparam logic [1:0] KindUpper = 2'd2;
+
+  // ---- Program, registered by a skid buffer ----
+  logic              head_valid, load;
+  logic [ProgW-1:0]  head;
+  stream_skid #(.Width(ProgW)) u_in (
+    .clk_i,
+    .rst_ni,
+    .in_valid_i,
+    .in_ready_o,
+    .in_data_i  ({in_blue_i, in_green_i, in_red_i, in_edge2_i, in_edge1_i, in_edge0_i, in_bbox_i}),
+    .out_valid_o(head_valid),
+    .out_ready_i(load),
+    .out_data_o (head)
+  );
+  logic [CoordW-1:0] p_x0, p_y0, p_x1, p_y1;
+  assign {p_y1, p_x1, p_y0, p_x0} = head[4*CoordW-1:0];
+
+  // ---- State ----
+  localparam logic [1:0] Idle = 2'd0;    // no triangle
+  localparam logic [1:0] Row = 2'd1;     // setting up the span of row y_q
+  localparam logic [1:0] Pixels = 2'd2;  // emitting pixels x_q .. xr_q of row y_q
+  logic [1:0]        state_q;
+  logic [CoordW-1:0] x0_q, x1_q, y1_q, y_q, x_q, xr_q;
+
+  logic fire, out_ready, row_empty, row_done, tri_done, row_start, row_next;
+  logic signed [QW:0] lower, upper;  // the row's span before clamping to the box
+
+  // ---- Edge DDAs: q and kind of every edge, gathered for the span logic ----
+  logic [3*QW-1:0] q_bus;
+  logic [     5:0] kind_bus;
+  for (genvar k = 0; k < 3; k++) begin : g_edge
+    logic [1:0] kind, kind_q;
+    logic [QW-1:0] q0, dq, q_q, dq_q;
+    logic [RW-1:0] r0, d, dr, r_q, d_q, dr_q;
+    logic [RW:0] sum;
+    logic carry;
+    assign {dr, dq, d, r0, q0, kind} = head[4*CoordW+k*EdgeW+:EdgeW];
+    assign sum   = {1'b0, r_q} + {1'b0, dr_q};
+    assign carry = sum >= {1'b0, d_q};
+    always_ff @(posedge clk_i) begin
+      if (load) begin
+        kind_q <= kind;
+        q_q    <= q0;
+        r_q    <= r0;
+        d_q    <= d;
+        dq_q   <= dq;
+        dr_q   <= dr;
+      end else if (row_next) begin
+        q_q <= q_q + dq_q + QW'(carry);
+        r_q <= carry ? RW'(sum - {1'b0, d_q}) : RW'(sum);
+      end
+    end
+    assign q_bus[k*QW+:QW] = q_q;
+    assign kind_bus[2*k+:2] = kind_q;
+  end
+
+  // The row's span: the tightest bounds of the edges, then the box.
+  logic signed [QW:0] q_ext[3];
+  for (genvar k = 0; k < 3; k++) begin : g_q_ext
+    assign q_ext[k] = (QW + 1)'($signed(q_bus[k*QW+:QW]));
+  end
+  always_comb begin
+    lower = $signed({{(QW + 1 - CoordW) {1'b0}}, x0_q});
+    upper = $signed({{(QW + 1 - CoordW) {1'b0}}, x1_q});
+    for (int k = 0; k < 3; k++) begin
+      if (kind_bus[2*k+:2] == KindLower && 0 - q_ext[k] > lower) lower = 0 - q_ext[k];
+      if (kind_bus[2*k+:2] == KindUpper && q_ext[k] < upper) upper = q_ext[k];
+    end
+  end
+  assign row_empty = lower > upper;
+
+  // ---- Control ----
+  assign fire      = state_q == Pixels && out_ready;
+  assign row_start = state_q == Row && !row_empty;
+  assign row_done  = (state_q == Row && row_empty) || (fire && x_q == xr_q);
+  assign tri_done  = row_done && y_q == y1_q;
+  assign row_next  = row_done && !tri_done;
+  assign load      = head_valid && (state_q == Idle || tri_done);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      state_q <= Idle;
+    end else if (load) begin
+      state_q <= p_y0 <= p_y1 ? Row : Idle;
+    end else if (tri_done) begin
+      state_q <= Idle;
+    end else if (row_next) begin
+      state_q <= Row;
+    end else if (row_start) begin
+      state_q <= Pixels;
+    end
+  end
+
+  // Data registers need no reset: they are only used while a triangle is walked.
+  always_ff @(posedge clk_i) begin
+    if (load) begin
+      x0_q <= p_x0;
+      x1_q <= p_x1;
+      y1_q <= p_y1;
+      y_q  <= p_y0;
+    end else if (row_next) begin
+      y_q <= y_q + 1'b1;
+    end
+    if (row_start) begin
+      x_q  <= lower[CoordW-1:0];
+      xr_q <= upper[CoordW-1:0];
+    end else if (fire) begin
+      x_q <= x_q + 1'b1;
+    end
+  end
+
+  // ---- Channels ----
+  logic [3*OutW-1:0] rgb;
+  logic [CoordW-1:0] k_offset;
+  assign k_offset = lower[CoordW-1:0] - x0_q;
+  for (genvar ch = 0; ch < 3; ch++) begin : g_channel
+    logic [ChanW-1:0] word;
+    assign word = head[4*CoordW+3*EdgeW+ch*ChanW+:ChanW];
+    quad_channel #(
+      .AccFmt  (AccFmt),
+      .OutFmt  (OutFmt),
+      .OutRound(OutRound),
+      .KBits   (CoordW)
+    ) u_channel (
+      .clk_i,
+      .load_i     (load),
+      .f00_i      (word[0*AccW+:AccW]),
+      .gy0_i      (word[1*AccW+:AccW]),
+      .gx0_i      (word[2*AccW+:AccW]),
+      .a_i        (word[3*AccW+:AccW]),
+      .b_i        (word[4*AccW+:AccW]),
+      .c_i        (word[5*AccW+:AccW]),
+      .row_start_i(row_start),
+      .k_i        (k_offset),
+      .pixel_i    (fire),
+      .row_next_i (row_next),
+      .value_o    (rgb[ch*OutW+:OutW])
+    );
+  end
+
+  // ---- Output skid buffer ----
+  stream_skid #(.Width(2 * CoordW + 3 * OutW)) u_out (
+    .clk_i,
+    .rst_ni,
+    .in_valid_i (state_q == Pixels),
+    .in_ready_o (out_ready),
+    .in_data_i  ({rgb, y_q, x_q}),
+    .out_valid_o,
+    .out_ready_i,
+    .out_data_o ({out_rgb_o, out_y_o, out_x_o})
+  );
+
+endmodule
