@@ -1,5 +1,6 @@
 // Minimal double-precision 3-vector for the float reference models (model/lyon_float.*) and
-// the renderer. Deliberately plain: a value type, element-wise + and -, scaling, dot product.
+// the renderer. Deliberately plain: a value type, element-wise + and -, scaling, dot and cross
+// products.
 #pragma once
 
 #include <cmath>
@@ -22,6 +23,11 @@ struct Vec3 {
 
 // Summed x, y, z in that order, as MATLAB's a*b' does (keeps results comparable to Lyon's code).
 [[nodiscard]] constexpr double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// Right-handed: cross({1, 0, 0}, {0, 1, 0}) == {0, 0, 1}.
+[[nodiscard]] constexpr Vec3 cross(Vec3 a, Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 
 [[nodiscard]] inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 

@@ -4,9 +4,13 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -25,6 +29,7 @@
 #include "sim/pipelines.h"
 #include "sim/quad_analysis.h"
 #include "sim/quad_stimulus.h"
+#include "sim/render.h"
 #include "sim/rtl_library.h"
 
 namespace {
@@ -166,7 +171,100 @@ int cmd_build_rtl(const Target& t) {
   return 0;
 }
 
-int cmd_bench(const Target& t, std::uint64_t vectors) {
+// Progress of long renders on stderr: a self-overwriting line on a terminal, nothing otherwise
+// (logs stay clean); at most five updates a second.
+RenderProgress render_progress(bool quiet) {
+  if (quiet || isatty(STDERR_FILENO) == 0) return [](std::string_view, auto, auto) {};
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>();
+  return [last](std::string_view what, std::uint64_t done, std::uint64_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (done != total && now - *last < std::chrono::milliseconds(200)) return;
+    *last = now;
+    if (total == 0) {
+      fmt::print(stderr, "\r\033[K  {}: {} outputs", what, done);
+    } else {
+      fmt::print(stderr, "\r\033[K  {}: {}/{} pixels", what, done, total);
+    }
+    if (done == total) fmt::print(stderr, "\r\033[K");
+  };
+}
+
+struct RenderCli {
+  RenderOptions options;
+  std::string backend = "auto";
+  std::string out_dir = "render";
+  std::string json;
+  int scanline = -1;
+  bool quiet = false;
+};
+
+int cmd_render(RenderCli c) {
+  c.options.backend = parse_backend(c.backend);
+  std::optional<OutputFile> json;
+  if (!c.json.empty()) json.emplace(c.json);  // unwritable: fail before rendering
+  const RenderResult r = render(c.options, render_progress(c.quiet));
+  const auto files = write_render_outputs(r, c.out_dir, c.scanline);
+  fmt::print("{}: {} x {} pixels ({} object pixels), reference {} (float)\n{}", r.scene,
+             r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
+             r.reference.method, metrics_markdown(r));
+  fmt::print("wrote {} files to {} (grid: {})\n", files.size(), c.out_dir,
+             (fs::path(c.out_dir) / (r.scene + "_grid.png")).string());
+  if (json) {
+    nlohmann::json j{{"scene", r.scene},
+                     {"width", r.reference.image.width()},
+                     {"height", r.reference.image.height()},
+                     {"reference", r.reference.method},
+                     {"files", nlohmann::json::array()},
+                     {"methods", nlohmann::json::array()}};
+    for (const auto& f : files) j["files"].push_back(f.string());
+    for (const MethodResult& m : r.results) {
+      j["methods"].push_back(
+          {{"method", m.method},
+           {"backend", backend_name(m.backend)},
+           {"colour_correctness", m.metrics.colour_correctness},
+           {"psnr_db",
+            std::isinf(m.metrics.psnr) ? nlohmann::json(nullptr) : nlohmann::json(m.metrics.psnr)},
+           {"max_error", m.metrics.max_error},
+           {"pixels", m.metrics.pixels},
+           {"seconds", m.seconds}});
+    }
+    std::fputs((j.dump(2) + "\n").c_str(), json->get());
+    json->commit();
+  }
+  return 0;
+}
+
+// `phongsim bench render`: lyon-k2 on shinyballs through each backend, object pixels per second
+// (two lights: two unit transactions per pixel) and the ratios.
+int bench_render(int radius) {
+  RenderOptions o;
+  o.size = radius;
+  o.methods = {"lyon-k2"};
+  double rate[3] = {};
+  const Backend backends[] = {Backend::float_ref, Backend::model, Backend::rtl};
+  std::string table;
+  std::uint64_t pixels = 0;
+  int width = 0, height = 0;
+  for (int i = 0; i < 3; ++i) {
+    o.backend = backends[i];
+    const RenderResult r = render(o, [](std::string_view, auto, auto) {});
+    const MethodResult& m = r.results.front();
+    pixels = m.metrics.pixels;
+    width = m.image.width();
+    height = m.image.height();
+    rate[i] = static_cast<double>(pixels) / m.seconds;
+    table += fmt::format("  {:<22} {:>12.0f}\n", backend_name(backends[i]), rate[i]);
+  }
+  fmt::print(
+      "bench render: shinyballs radius {} ({} x {} pixels, {} on the spheres), lyon-k2\n"
+      "  {:<22} {:>12}\n{}  {:<22} {:>11.2f}x\n  {:<22} {:>11.2f}x\n",
+      radius, width, height, pixels, "object pixels/s", "", table, "rtl / model", rate[2] / rate[1],
+      "model / float", rate[1] / rate[0]);
+  return 0;
+}
+
+int cmd_bench(const Target& t, std::uint64_t vectors, int render_radius) {
+  if (t.pipeline == "render" && t.config.empty()) return bench_render(render_radius);
   const Loaded l = load(t);
   const DutFactory make_dut = rtl_factory(l, t);
   const BenchReport r = bench(*l.pipeline, l.cfg, *l.model, make_dut, vectors);
@@ -458,7 +556,62 @@ int main(int argc, char** argv) {
   bench_target.add_options(*bench_cmd);
   bench_cmd->add_option("--vectors", bench_vectors, "vectors per measurement")
       ->capture_default_str();
-  bench_cmd->callback([&]() { action = [&]() { return cmd_bench(bench_target, bench_vectors); }; });
+  int bench_radius = 85;
+  bench_cmd
+      ->add_option("--radius", bench_radius,
+                   "bench render: shinyballs sphere radius (85: a 511-pixel-wide strip)")
+      ->capture_default_str();
+  bench_cmd->callback(
+      [&]() { action = [&]() { return cmd_bench(bench_target, bench_vectors, bench_radius); }; });
+
+  // render
+  RenderCli render_cli;
+  auto* render_cmd = app.add_subcommand(
+      "render",
+      "Shade a scene with shading methods through float, model or RTL backends; write "
+      "images, difference images, a scanline plot and metrics");
+  render_cmd
+      ->add_option("--scene", render_cli.options.scene,
+                   "shinyballs, kbsphere32, kbsphere512, triangle, dodecahedron, "
+                   "sphere40, teapot, or a scene file (.toml)")
+      ->capture_default_str();
+  render_cmd
+      ->add_option("--method", render_cli.options.methods,
+                   "method(s), one grid row each (default: the scene's list; "
+                   "`phongsim render --list-methods`)")
+      ->delimiter(',');
+  render_cmd
+      ->add_option("--backend", render_cli.backend,
+                   "auto (RTL where a method has a unit, else float), float, model, rtl")
+      ->capture_default_str();
+  render_cmd->add_option("--size", render_cli.options.size,
+                         "shinyballs: sphere radius in pixels (default 64); meshes: image width");
+  render_cmd->add_option("--teapot-resolution", render_cli.options.teapot_resolution,
+                         "teapot: grid cells per patch side (default: about 3750 facets)");
+  render_cmd->add_option("--reference", render_cli.options.reference,
+                         "reference method for metrics and difference images (default phong, "
+                         "float)");
+  render_cmd->add_option("--scanline", render_cli.scanline,
+                         "row of the scanline illumination plot (default: the middle)");
+  render_cmd->add_option("--out", render_cli.out_dir, "output directory")->capture_default_str();
+  render_cmd->add_option("--json", render_cli.json, "write a JSON summary here");
+  render_cmd->add_flag("--no-build", render_cli.options.no_build,
+                       "fail instead of Verilating a configuration that is not built yet");
+  render_cmd->add_flag("--quiet", render_cli.quiet, "no progress display");
+  bool list_methods = false;
+  render_cmd->add_flag("--list-methods", list_methods, "list the methods and exit");
+  render_cmd->callback([&]() {
+    action = [&]() {
+      if (list_methods) {
+        for (const MethodInfo& m : render_methods()) {
+          fmt::print("  {:<22} {:<6} {}{}\n", m.name, m.config.empty() ? "float" : "unit",
+                     m.description, m.mesh_only ? " [meshes only]" : "");
+        }
+        return 0;
+      }
+      return cmd_render(render_cli);
+    };
+  });
 
   // vectors
   Target vectors_target;

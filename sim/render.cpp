@@ -1,0 +1,856 @@
+#include "sim/render.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "model/config.h"
+#include "model/error.h"
+#include "model/lyon.h"
+#include "model/lyon_float.h"
+#include "model/quad.h"
+#include "model/quad_float.h"
+#include "model/quad_setup.h"
+#include "sim/harness.h"
+#include "sim/output_file.h"
+#include "sim/pipelines.h"
+#include "sim/rtl_library.h"
+#include "sim/scene.h"
+
+namespace phongsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kSubBits = 4;  // subpixel bits of projected vertices (the quad configs' sub_bits)
+constexpr std::string_view kShinyballs = "shinyballs";
+
+// ---- Methods ----
+
+enum class Kind { flat, gouraud, gouraud4, quadratic, pixel };
+
+struct Method {
+  MethodInfo info;
+  Kind kind;
+  // Per-pixel specular amount for unit N, L, V and Phong shininess n (Kind::pixel).
+  double (*spec)(Vec3 n, Vec3 l, Vec3 v, double shininess) = nullptr;
+};
+
+double row(lyon::Spec s, Vec3 n, Vec3 l, Vec3 v, double shin) {
+  return lyon::specfuns(n, l, v, shin)[lyon::index(s)];
+}
+
+const std::vector<Method>& methods() {
+  using lyon::Spec;
+  static const std::vector<Method> table{
+      {{"flat", "one colour per triangle: the lighting model at the centroid, face normal", "",
+        true},
+       Kind::flat},
+      {{"gouraud", "lighting at the vertices, colour interpolated linearly (unit: quad/linear)",
+        "quad/linear", true},
+       Kind::gouraud},
+      {{"gouraud4", "Gouraud on the 4x-subdivided mesh (vertices and edge midpoints)", "", true},
+       Kind::gouraud4},
+      {{"quadratic",
+        "Vlasic 4.3: lighting at vertices and edge midpoints, eq. 4.1 per pixel "
+        "(unit: quad/default)",
+        "quad/default", true},
+       Kind::quadratic},
+      {{"phong", "Phong (R.L)^n, normal normalized per pixel (Figure 9 row 1)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::phong(n, l, v, s); }},
+      {{"lyon-k0", "Lyon f_0((n/2)|L-R|^2) (row 2; unit: Fig. 7, g2)", "lyon/fig7_k0", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 0); }},
+      {{"lyon-k1", "Lyon f_1 (row 3; unit: Fig. 7, g2)", "lyon/fig7_k1", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 1); }},
+      {{"lyon-k2", "Lyon f_2 (row 4; unit: Fig. 7, g2)", "lyon/default", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
+      {{"lyon-k3", "Lyon f_3 (unit: Fig. 7, g2)", "lyon/fig7_k3", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 3); }},
+      {{"lyon-fig8-k1", "Lyon f_1, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k1",
+        false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 1); }},
+      {{"lyon-fig8-k2", "Lyon f_2, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k2",
+        false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
+      {{"blinn", "Blinn-Phong (H*.N)^(4n) (row 5)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::blinn(n, l, v, s); }},
+      {{"halfway-unit-k2", "D = H* - N, f_2 (row 6)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::halfway_unit_k2, n, l, v, s); }},
+      {{"halfway-proj-k2", "D = H - (H.N)N, f_2 (row 7)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 2, 0); }},
+      {{"halfway-g2-proj-k2", "D = Hg2 - (Hg2.N)N, f_2 (row 8; unit: halfway)", "lyon/halfway",
+        false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 2, 2); }},
+      {{"halfway-g2-proj-k1", "as row 8 with f_1 (row 9)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 1, 2); }},
+      {{"halfway-g2-k2", "D = Hg2 - N, f_2 (row 10)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::halfway_g2_k2, n, l, v, s); }},
+      {{"halfway-proj-k1-fig8", "D = H - (H.N)N, f_1, root shininess (unit: halfway_fig8)",
+        "lyon/halfway_fig8", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 1, 0); }},
+      {{"torrance-sparrow", "exp(-(4n/2) acos(H*.N)^2), Blinn's D2 (row 11)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::torrance_sparrow, n, l, v, s); }},
+      {{"trowbridge-reitz", "(1/(1 + (1 - (H*.N)^2) n))^2, Blinn's D3 (row 12)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::trowbridge_reitz, n, l, v, s); }},
+  };
+  return table;
+}
+
+const Method& method(std::string_view name) {
+  for (const Method& m : methods()) {
+    if (m.info.name == name) return m;
+  }
+  std::string known;
+  for (const Method& m : methods())
+    known += fmt::format("{}{}", known.empty() ? "" : ", ", m.info.name);
+  throw Error(fmt::format("unknown method '{}' (known: {})", name, known));
+}
+
+const Method& phong() {
+  static const Method& m = method("phong");
+  return m;
+}
+
+// Figure 9's twelve rows.
+const std::vector<std::string> kShinyballsMethods{"phong",
+                                                  "lyon-k0",
+                                                  "lyon-k1",
+                                                  "lyon-k2",
+                                                  "blinn",
+                                                  "halfway-unit-k2",
+                                                  "halfway-proj-k2",
+                                                  "halfway-g2-proj-k2",
+                                                  "halfway-g2-proj-k1",
+                                                  "halfway-g2-k2",
+                                                  "torrance-sparrow",
+                                                  "trowbridge-reitz"};
+const std::vector<std::string> kMeshMethods{"flat",  "gouraud", "gouraud4", "quadratic",
+                                            "phong", "blinn",   "lyon-k2"};
+
+// ---- Hardware units: one configuration's model or Verilated RTL ----
+
+class Unit {
+ public:
+  Unit(std::string_view config, Backend backend, bool no_build)
+      : cfg_(Config::load((fs::path(PHONGSIM_SOURCE_DIR) / "configs" / config).string() + ".toml")),
+        model_(make_model(find_pipeline(cfg_.pipeline()), cfg_)),
+        backend_(backend) {
+    if (backend == Backend::rtl) {
+      const RtlPlugin plugin =
+          locate_rtl(cfg_, no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
+      library_ = RtlLibrary::open(plugin.path, plugin.gflags);
+    }
+  }
+
+  [[nodiscard]] const Config& config() const { return cfg_; }
+  [[nodiscard]] const PipelineModel& model() const { return *model_; }
+
+  // Every output of `vectors` (flattened raw inputs), in order.
+  std::vector<std::int64_t> run(const std::vector<std::int64_t>& vectors,
+                                const RenderProgress& progress, std::string_view what) {
+    const std::size_t n_in = model_->inputs().size();
+    const std::size_t n_out = model_->outputs().size();
+    const std::uint64_t count = vectors.size() / n_in;
+    std::vector<std::int64_t> out;
+    if (backend_ == Backend::model) {
+      for (std::uint64_t i = 0; i < count; ++i) {
+        (void)model_->eval(std::span(vectors).subspan(i * n_in, n_in), out);
+        if (i % 4096 == 0) progress(what, i, count);
+      }
+      return out;
+    }
+    auto dut = library_->create(*model_);
+    std::uint64_t outputs = 0;
+    const HarnessResult r =
+        stream_vectors(*dut, n_in, n_out, vectors, [&](std::span<const std::int64_t> o) {
+          out.insert(out.end(), o.begin(), o.end());
+          if (++outputs % 4096 == 0) progress(what, outputs, 0);
+        });
+    if (r.reason != StopReason::finished || r.inputs != count) {
+      throw Error(fmt::format("{}: the RTL of {} stopped: {}", what, cfg_.origin(),
+                              r.message.empty() ? "not every input was accepted" : r.message));
+    }
+    return out;
+  }
+
+ private:
+  Config cfg_;
+  std::unique_ptr<PipelineModel> model_;
+  Backend backend_;
+  std::shared_ptr<RtlLibrary> library_;
+};
+
+// ---- Geometry: fragments (the visible surface point of each object pixel) ----
+
+struct Fragment {
+  int x = 0, y = 0;
+  int tri = -1;  // mesh triangle (-1: analytic sphere)
+  quad::St st;   // (s, t) in the triangle (eq. 4.3 at the pixel centre)
+  Vec3 n;        // interpolated normal (not normalized)
+  Vec3 p;        // surface point (world)
+  double shininess = 1;
+  Vec3 kd, ks, ka;  // material
+};
+
+struct Lighting {
+  std::vector<Light> lights;
+  bool view_at_infinity = true;
+  Vec3 view_dir{0, 0, 1};  // towards the viewer (orthographic)
+  Vec3 eye;                // perspective
+
+  [[nodiscard]] Vec3 v_at(Vec3 p) const {
+    return view_at_infinity ? view_dir : normalized(eye - p);
+  }
+  [[nodiscard]] static Vec3 l_at(const Light& l, Vec3 p) {
+    return l.at_infinity ? normalized(l.position) : normalized(l.position - p);
+  }
+};
+
+// Everything a method needs: the image frame, the fragments, the mesh in screen space.
+struct Frame {
+  std::string scene;
+  int width = 0, height = 0;
+  Rgb8 background;
+  std::vector<Fragment> fragments;
+  std::vector<int> owner;  // per pixel: fragment index or -1
+  Lighting lighting;
+  bool mesh = false;
+  Mesh geometry;                          // world positions and normals
+  std::vector<quad::SubpixelTri> screen;  // projected triangles (mesh scenes)
+  Material material;
+  std::vector<std::pair<std::string, std::vector<bool>>> regions;  // RenderResult::regions
+};
+
+// Lyon's specular.m (seed 002, appendix): spheres of radius m pixels for n = 1, 4, 16, 64, 256,
+// each offset by one radius to the right (the earlier one in front), viewpoint [0, 0, 1], lights
+// at infinity along [1, 1, -1] and [1, -1, 1], diffuse factor 35, specular factor 400·(n/256)^¼,
+// on a bright (255) background. One strip per method instead of the MATLAB's overlapped rows.
+Frame shinyballs(int m) {
+  Frame f;
+  f.scene = std::string(kShinyballs);
+  f.width = 6 * m + 1;
+  f.height = 2 * m + 1;
+  f.background = {255, 255, 255};
+  for (const double n : {1, 4, 16, 64, 256}) {
+    f.regions.emplace_back(fmt::format("n={}", n),
+                           std::vector<bool>(static_cast<std::size_t>(f.width) * f.height));
+  }
+  f.lighting.lights = {{normalized({1, 1, -1}), true, {1, 1, 1}},
+                       {normalized({1, -1, 1}), true, {1, 1, 1}}};
+  f.owner.assign(static_cast<std::size_t>(f.width) * f.height, -1);
+  const double ns[] = {1, 4, 16, 64, 256};
+  for (int py = 0; py < f.height; ++py) {
+    for (int px = 0; px < f.width; ++px) {
+      const double xx = (0.5 + (px - m)) / m;
+      const double y = -(0.5 + (py - m)) / m;  // MATLAB's y, pointing up
+      for (int ni = 0; ni < 5; ++ni) {
+        const double x = xx - ni;
+        const double z = 1 - x * x - y * y;
+        if (z < 0) continue;
+        Fragment fr;
+        fr.x = px;
+        fr.y = py;
+        fr.n = {x, y, std::sqrt(z)};
+        fr.p = fr.n;
+        fr.shininess = ns[ni];
+        const double specf = 400.0 * std::pow(ns[ni] / 256.0, 0.25);
+        fr.kd = Vec3{35, 35, 35} * (1.0 / 255);
+        fr.ks = Vec3{specf, specf, specf} * (1.0 / 255);
+        const std::size_t at = static_cast<std::size_t>(py) * f.width + px;
+        f.owner[at] = static_cast<int>(f.fragments.size());
+        f.regions[static_cast<std::size_t>(ni)].second[at] = true;
+        f.fragments.push_back(fr);
+        break;
+      }
+    }
+  }
+  return f;
+}
+
+// Projects the scene's mesh (orthographic or perspective camera), rasterizes every triangle with
+// the quad unit's coverage rule (quad::raster, top-left) and keeps the nearest surface per pixel
+// (depth interpolated affinely in screen space, like every attribute here: no perspective
+// correction, as in the hardware).
+Frame mesh_frame(const Scene& sc, int width_override) {
+  Frame f;
+  f.scene = sc.name;
+  f.mesh = true;
+  f.width = sc.width;
+  f.height = sc.height;
+  if (width_override > 0) {
+    f.height = std::max(1, static_cast<int>(std::lround(static_cast<double>(sc.height) *
+                                                        width_override / sc.width)));
+    f.width = width_override;
+  }
+  if (f.width > 2048 || f.height > 2048) {
+    throw Error(fmt::format("image {} x {} exceeds the 2048 x 2048 screen", f.width, f.height));
+  }
+  const auto byte = [](double c) {
+    return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0, 1.0) * 255));
+  };
+  f.background = {byte(sc.background.x), byte(sc.background.y), byte(sc.background.z)};
+  f.geometry = sc.mesh;
+  f.material = sc.material;
+  f.lighting.lights = sc.lights;
+  const Camera& cam = sc.camera;
+  const Vec3 w = normalized(cam.eye - cam.target);
+  const Vec3 u = normalized(cross(cam.up, w));
+  const Vec3 v = cross(w, u);
+  const bool ortho = cam.fov_deg <= 0;
+  f.lighting.view_at_infinity = ortho;
+  f.lighting.view_dir = w;
+  f.lighting.eye = cam.eye;
+  const double half_h = f.height / 2.0;
+  const double focal = ortho ? half_h / (cam.ortho_height / 2)
+                             : half_h / std::tan(cam.fov_deg * 3.14159265358979323846 / 360);
+  const std::size_t nv = sc.mesh.positions.size();
+  std::vector<quad::Vertex2> sv(nv);
+  std::vector<double> depth(nv);
+  std::vector<bool> in_front(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const Vec3 d = sc.mesh.positions[i] - cam.eye;
+    const double cx = dot(d, u), cy = dot(d, v), cz = -dot(d, w);  // cz: distance ahead
+    in_front[i] = ortho || cz > 1e-6;
+    const double scale = ortho ? focal : focal / cz;
+    sv[i] = {f.width / 2.0 + cx * scale, half_h - cy * scale};
+    depth[i] = cz;
+  }
+  std::vector<double> zbuf(static_cast<std::size_t>(f.width) * f.height,
+                           std::numeric_limits<double>::infinity());
+  struct Hit {
+    int tri = -1;
+    quad::St st;
+  };
+  std::vector<Hit> hits(zbuf.size());
+  const double limit = 2048;
+  for (std::size_t t = 0; t < sc.mesh.triangles.size(); ++t) {
+    const auto& idx = sc.mesh.triangles[t];
+    quad::SubpixelTri tri;
+    bool usable = true;
+    for (int k = 0; k < 3; ++k) {
+      const quad::Vertex2 p = sv[static_cast<std::size_t>(idx[k])];
+      if (!in_front[static_cast<std::size_t>(idx[k])] || p.x < 0 || p.y < 0 || p.x > limit ||
+          p.y > limit) {
+        usable = false;
+      }
+    }
+    if (!usable) {
+      throw Error(fmt::format(
+          "scene '{}': triangle {} leaves the 2048 x 2048 screen or the space in front of the "
+          "camera (move the camera back or shrink the mesh)",
+          sc.name, t));
+    }
+    tri = quad::quantize(sv[idx[0]], sv[idx[1]], sv[idx[2]], kSubBits);
+    f.screen.push_back(tri);
+    if (quad::orientation(tri) == 0) continue;
+    const auto pv = quad::to_pixels(tri);
+    for (const auto& [x, y] : quad::raster(tri, f.width, f.height)) {
+      const quad::St st = quad::st_at(pv[0], pv[1], pv[2], {x + 0.5, y + 0.5});
+      const double z =
+          (1 - st.s - st.t) * depth[idx[0]] + st.s * depth[idx[1]] + st.t * depth[idx[2]];
+      const std::size_t at = static_cast<std::size_t>(y) * f.width + x;
+      if (z < zbuf[at]) {
+        zbuf[at] = z;
+        hits[at] = {static_cast<int>(t), st};
+      }
+    }
+  }
+  f.owner.assign(zbuf.size(), -1);
+  for (int y = 0; y < f.height; ++y) {
+    for (int x = 0; x < f.width; ++x) {
+      const std::size_t at = static_cast<std::size_t>(y) * f.width + x;
+      const Hit& h = hits[at];
+      if (h.tri < 0) continue;
+      const auto& idx = sc.mesh.triangles[static_cast<std::size_t>(h.tri)];
+      const auto lerp = [&](const std::vector<Vec3>& a) {
+        return (1 - h.st.s - h.st.t) * a[idx[0]] + h.st.s * a[idx[1]] + h.st.t * a[idx[2]];
+      };
+      Fragment fr;
+      fr.x = x;
+      fr.y = y;
+      fr.tri = h.tri;
+      fr.st = h.st;
+      fr.n = lerp(sc.mesh.normals);
+      fr.p = lerp(sc.mesh.positions);
+      fr.shininess = sc.material.shininess;
+      fr.kd = sc.material.diffuse;
+      fr.ks = sc.material.specular;
+      fr.ka = sc.material.ambient;
+      f.owner[at] = static_cast<int>(f.fragments.size());
+      f.fragments.push_back(fr);
+    }
+  }
+  return f;
+}
+
+// ---- Shading ----
+
+Vec3 mul(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+
+// The lighting model with per-light diffuse and specular amounts:
+// colour = ka + Σ light ⊙ (kd·diff + ks·spec).
+struct Amounts {
+  double diff = 0;
+  double spec = 0;
+};
+Vec3 combine(const Fragment& fr, const std::vector<Light>& lights,
+             const std::vector<Amounts>& amounts) {
+  Vec3 c = fr.ka;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    c = c + mul(lights[i].colour, fr.kd * amounts[i].diff + fr.ks * amounts[i].spec);
+  }
+  return c;
+}
+
+// Float evaluation of a method's lighting at a point with unit normal n.
+Vec3 shade_float(const Method& m, const Frame& f, const Fragment& fr, Vec3 n, Vec3 p) {
+  std::vector<Amounts> a;
+  const Vec3 v = f.lighting.v_at(p);
+  const auto spec = m.spec != nullptr ? m.spec : phong().spec;  // vertex methods light by Phong
+  for (const Light& l : f.lighting.lights) {
+    const Vec3 ld = Lighting::l_at(l, p);
+    a.push_back({std::max(0.0, dot(n, ld)), spec(n, ld, v, fr.shininess)});
+  }
+  return combine(fr, f.lighting.lights, a);
+}
+
+Rgb8 to_rgb8(Vec3 c) {
+  const auto byte = [](double x) {
+    return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255));
+  };
+  return {byte(c.x), byte(c.y), byte(c.z)};
+}
+
+Vec3 clamp01(Vec3 c) {
+  return {std::clamp(c.x, 0.0, 1.0), std::clamp(c.y, 0.0, 1.0), std::clamp(c.z, 0.0, 1.0)};
+}
+
+Image blank(const Frame& f) { return Image(f.width, f.height, f.background); }
+
+// Per-pixel methods in float.
+Image pixel_float(const Method& m, const Frame& f) {
+  Image img = blank(f);
+  for (const Fragment& fr : f.fragments) {
+    img.at(fr.x, fr.y) = to_rgb8(shade_float(m, f, fr, normalized(fr.n), fr.p));
+  }
+  return img;
+}
+
+// Per-pixel methods through a Lyon unit: one transaction per pixel and light, with
+// N0 = N1 = the interpolated normal (not normalized: the unit's g-normalization does that) and
+// a = 0; V and L unit vectors; shininess n (arrangement 8: m = round(sqrt(n))).
+Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                 std::string_view what) {
+  const auto& lf = dynamic_cast<const LyonModel&>(unit.model()).formats();
+  const auto q = [](double x, fx::Format fmt) {
+    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  std::vector<std::int64_t> words;
+  const std::size_t nl = f.lighting.lights.size();
+  words.reserve(f.fragments.size() * nl * 14);
+  for (const Fragment& fr : f.fragments) {
+    const Vec3 v = f.lighting.v_at(fr.p);
+    const double shin =
+        lf.arrangement == 8 ? std::round(std::sqrt(fr.shininess)) : std::round(fr.shininess);
+    for (const Light& l : f.lighting.lights) {
+      const Vec3 ld = Lighting::l_at(l, fr.p);
+      for (int rep = 0; rep < 2; ++rep) {
+        words.insert(words.end(), {q(fr.n.x, lf.vec), q(fr.n.y, lf.vec), q(fr.n.z, lf.vec)});
+      }
+      words.push_back(0);
+      words.insert(words.end(), {q(v.x, lf.vec), q(v.y, lf.vec), q(v.z, lf.vec)});
+      words.insert(words.end(), {q(ld.x, lf.vec), q(ld.y, lf.vec), q(ld.z, lf.vec)});
+      words.push_back(q(shin, lf.shin));
+    }
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  if (out.size() != f.fragments.size() * nl * 2) {
+    throw Error(fmt::format("{}: the unit returned {} outputs for {} pixels", what, out.size() / 2,
+                            f.fragments.size() * nl));
+  }
+  Image img = blank(f);
+  std::vector<Amounts> a(nl);
+  for (std::size_t i = 0; i < f.fragments.size(); ++i) {
+    for (std::size_t k = 0; k < nl; ++k) {
+      a[k] = {fx::to_real(out[2 * (i * nl + k) + 1], lf.diff),
+              fx::to_real(out[2 * (i * nl + k)], lf.spec)};
+    }
+    const Fragment& fr = f.fragments[i];
+    img.at(fr.x, fr.y) = to_rgb8(combine(fr, f.lighting.lights, a));
+  }
+  return img;
+}
+
+// The lighting at the six sample points of triangle t (eq. 4.2 order), clamped to [0, 1]: the
+// colours the vertex methods interpolate (Vlasic §4.3 step 1: sample normals normalized).
+std::array<Vec3, 6> samples(const Frame& f, int t) {
+  const auto& idx = f.geometry.triangles[static_cast<std::size_t>(t)];
+  const Vec3 p[3] = {f.geometry.positions[idx[0]], f.geometry.positions[idx[1]],
+                     f.geometry.positions[idx[2]]};
+  const auto normals = quad::sample_normals(f.geometry.normals[idx[0]], f.geometry.normals[idx[1]],
+                                            f.geometry.normals[idx[2]]);
+  const std::array<Vec3, 6> pos{p[0], (p[0] + p[1]) * 0.5, p[1], (p[1] + p[2]) * 0.5,
+                                p[2], (p[2] + p[0]) * 0.5};
+  Fragment fr;
+  fr.shininess = f.material.shininess;
+  fr.kd = f.material.diffuse;
+  fr.ks = f.material.specular;
+  fr.ka = f.material.ambient;
+  std::array<Vec3, 6> c;
+  for (int k = 0; k < 6; ++k) c[k] = clamp01(shade_float(phong(), f, fr, normals[k], pos[k]));
+  return c;
+}
+
+double channel(Vec3 c, int ch) { return ch == 0 ? c.x : (ch == 1 ? c.y : c.z); }
+
+// Vertex methods (flat, Gouraud, subdivided Gouraud, quadratic) in float.
+Image vertex_float(const Method& m, const Frame& f) {
+  std::vector<std::array<Vec3, 6>> cache(f.geometry.triangles.size());
+  std::vector<bool> done(cache.size());
+  Image img = blank(f);
+  for (const Fragment& fr : f.fragments) {
+    const auto t = static_cast<std::size_t>(fr.tri);
+    if (m.kind == Kind::flat) {
+      const auto& idx = f.geometry.triangles[t];
+      const Vec3 a = f.geometry.positions[idx[0]], b = f.geometry.positions[idx[1]],
+                 c = f.geometry.positions[idx[2]];
+      const Vec3 n = normalized(cross(b - a, c - a));
+      img.at(fr.x, fr.y) = to_rgb8(shade_float(phong(), f, fr, n, (a + b + c) * (1.0 / 3)));
+      continue;
+    }
+    if (!done[t]) {
+      cache[t] = samples(f, fr.tri);
+      done[t] = true;
+    }
+    const auto& c = cache[t];
+    const double s = fr.st.s, tt = fr.st.t;
+    Vec3 col;
+    if (m.kind == Kind::gouraud) {
+      col = (1 - s - tt) * c[0] + s * c[2] + tt * c[4];
+    } else if (m.kind == Kind::gouraud4) {
+      // Sub-triangles of the midpoint split, each interpolated linearly in (s, t).
+      if (s >= 0.5) {
+        // corner v1: vertices m01 (s=.5,t=0), v1 (1,0), m12 (.5,.5)
+        const double a = 2 * (s - 0.5), b = 2 * tt;
+        col = (1 - a - b) * c[1] + a * c[2] + b * c[3];
+      } else if (tt >= 0.5) {  // corner v2: m20 (0,.5), m12 (.5,.5), v2 (0,1)
+        const double a = 2 * s, b = 2 * (tt - 0.5);
+        col = (1 - a - b) * c[5] + a * c[3] + b * c[4];
+      } else if (s + tt <= 0.5) {  // corner v0: v0, m01, m20
+        const double a = 2 * s, b = 2 * tt;
+        col = (1 - a - b) * c[0] + a * c[1] + b * c[5];
+      } else {                                       // middle: m12 (.5,.5), m20 (0,.5), m01 (.5,0)
+        const double a = 1 - 2 * s, b = 1 - 2 * tt;  // weights of m20 and m01
+        col = (1 - a - b) * c[3] + a * c[5] + b * c[1];
+      }
+    } else {  // quadratic: eq. 4.1 per channel
+      quad::Samples r[3];
+      for (int k = 0; k < 6; ++k) {
+        for (int ch = 0; ch < 3; ++ch) r[ch][k] = channel(c[k], ch);
+      }
+      col = {quad::eval_st(quad::coefficients(r[0]), fr.st),
+             quad::eval_st(quad::coefficients(r[1]), fr.st),
+             quad::eval_st(quad::coefficients(r[2]), fr.st)};
+    }
+    img.at(fr.x, fr.y) = to_rgb8(col);
+  }
+  return img;
+}
+
+// Vertex methods through the quadratic unit: one program per triangle with a visible pixel
+// (linear configurations get the plane through the vertex colours); the unit's pixels are kept
+// where the triangle is the visible surface.
+Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgress& progress,
+                  std::string_view what) {
+  const QuadFormats qf = dynamic_cast<const QuadModel&>(unit.model()).formats();
+  if (qf.sub_bits != kSubBits) {
+    throw Error(fmt::format("{}: the renderer projects with {} subpixel bits; {} has {}", what,
+                            kSubBits, unit.config().origin(), qf.sub_bits));
+  }
+  // The framebuffer's 255 means 1.0, the unit's largest output (255/256 for 0.8) does: colours
+  // go in scaled by that top value, so the output's raw bits are the framebuffer value.
+  const double top = fx::to_real(qf.out.max_raw(), qf.out);
+  std::vector<bool> visible(f.geometry.triangles.size());
+  for (const Fragment& fr : f.fragments) visible[static_cast<std::size_t>(fr.tri)] = true;
+  std::vector<std::int64_t> words;
+  std::vector<int> tris;
+  std::vector<std::size_t> counts;
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    const auto c = samples(f, static_cast<int>(t));
+    std::array<quad::Coeffs, 3> colour;
+    for (int ch = 0; ch < 3; ++ch) {
+      quad::Samples r;
+      for (int k = 0; k < 6; ++k) r[k] = channel(c[k], ch) * top;
+      colour[ch] = m.kind == Kind::gouraud ? quad::linear_coefficients(r[0], r[2], r[4])
+                                           : quad::coefficients(r);
+    }
+    const auto w = QuadModel::words(quad_program(f.screen[t], colour, qf));
+    words.insert(words.end(), w.begin(), w.end());
+    tris.push_back(static_cast<int>(t));
+    counts.push_back(quad::raster(f.screen[t], 2048, 2048).size());
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  std::size_t expected = 0;
+  for (const std::size_t c : counts) expected += c;
+  if (out.size() != 5 * expected) {
+    throw Error(fmt::format("{}: the unit emitted {} pixels, coverage says {}", what,
+                            out.size() / 5, expected));
+  }
+  Image img = blank(f);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    for (std::size_t i = 0; i < counts[k]; ++i, at += 5) {
+      const auto x = static_cast<int>(out[at]);
+      const auto y = static_cast<int>(out[at + 1]);
+      if (x >= f.width || y >= f.height) continue;
+      const int o = f.owner[static_cast<std::size_t>(y) * f.width + x];
+      if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != tris[k]) continue;
+      const double full = static_cast<double>(qf.out.max_raw());
+      img.at(x, y) =
+          to_rgb8({static_cast<double>(out[at + 2]) / full, static_cast<double>(out[at + 3]) / full,
+                   static_cast<double>(out[at + 4]) / full});
+    }
+  }
+  return img;
+}
+
+Backend resolve(const Method& m, Backend asked) {
+  if (asked == Backend::automatic) return m.info.config.empty() ? Backend::float_ref : Backend::rtl;
+  if (asked != Backend::float_ref && m.info.config.empty()) {
+    throw Error(
+        fmt::format("method '{}' has no hardware unit: --backend {} is not available "
+                    "(use float or auto)",
+                    m.info.name, backend_name(asked)));
+  }
+  return asked;
+}
+
+std::vector<bool> mask_of(const Frame& f) {
+  std::vector<bool> mask(f.owner.size());
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = f.owner[i] >= 0;
+  return mask;
+}
+
+}  // namespace
+
+std::string_view backend_name(Backend b) {
+  switch (b) {
+    case Backend::automatic:
+      return "auto";
+    case Backend::float_ref:
+      return "float";
+    case Backend::model:
+      return "model";
+    case Backend::rtl:
+      return "rtl";
+  }
+  return "?";
+}
+
+Backend parse_backend(std::string_view name) {
+  for (const Backend b : {Backend::automatic, Backend::float_ref, Backend::model, Backend::rtl}) {
+    if (backend_name(b) == name) return b;
+  }
+  throw Error(fmt::format("unknown backend '{}' (known: auto, float, model, rtl)", name));
+}
+
+const std::vector<MethodInfo>& render_methods() {
+  static const std::vector<MethodInfo> infos = [] {
+    std::vector<MethodInfo> v;
+    for (const Method& m : methods()) v.push_back(m.info);
+    return v;
+  }();
+  return infos;
+}
+
+const MethodInfo& find_method(std::string_view name) { return method(name).info; }
+
+RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
+  // Validate before any work.
+  const bool analytic = o.scene == kShinyballs;
+  if (o.size < 0 || o.size > 2048) {
+    throw Error(fmt::format("--size {} is out of range (1..2048)", o.size));
+  }
+  if (analytic && o.size > 340) {
+    throw Error(
+        fmt::format("--size {}: shinyballs is 6 radii wide, at most 340 pixels of radius "
+                    "fit the 2048-pixel screen",
+                    o.size));
+  }
+  const std::vector<std::string>& names =
+      o.methods.empty() ? (analytic ? kShinyballsMethods : kMeshMethods) : o.methods;
+  const std::string ref_name = o.reference.empty() ? "phong" : o.reference;
+  const Method& ref = method(ref_name);
+  std::vector<const Method*> chosen;
+  std::vector<Backend> backends;
+  for (const std::string& n : names) {
+    const Method& m = method(n);
+    if (analytic && m.info.mesh_only) {
+      throw Error(
+          fmt::format("method '{}' interpolates over triangles; scene '{}' has none "
+                      "(use a mesh scene)",
+                      n, o.scene));
+    }
+    chosen.push_back(&m);
+    backends.push_back(resolve(m, o.backend));
+  }
+  if (analytic && ref.info.mesh_only) {
+    throw Error(fmt::format("reference '{}' needs a mesh scene", ref_name));
+  }
+  // Units (loading them finds or builds the plugins before rendering starts).
+  std::map<std::pair<std::string, Backend>, std::unique_ptr<Unit>> units;
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    if (backends[i] == Backend::float_ref) continue;
+    auto key = std::make_pair(std::string(chosen[i]->info.config), backends[i]);
+    if (!units.contains(key)) {
+      units[key] = std::make_unique<Unit>(chosen[i]->info.config, backends[i], o.no_build);
+    }
+  }
+  const Frame f = analytic ? shinyballs(o.size == 0 ? 64 : o.size)
+                           : mesh_frame(fs::path(o.scene).extension() == ".toml"
+                                            ? load_scene(o.scene)
+                                            : builtin_scene(o.scene, o.teapot_resolution),
+                                        o.size);
+
+  const auto render_one = [&](const Method& m, Backend b) {
+    const std::string what = fmt::format("{} [{}]", m.info.name, backend_name(b));
+    progress(what, 0, f.fragments.size());
+    const auto start = std::chrono::steady_clock::now();
+    MethodResult r;
+    r.method = std::string(m.info.name);
+    r.backend = b;
+    if (b == Backend::float_ref) {
+      r.image = m.kind == Kind::pixel ? pixel_float(m, f) : vertex_float(m, f);
+    } else {
+      Unit& unit = *units.at({std::string(m.info.config), b});
+      r.image = m.kind == Kind::pixel ? pixel_unit(f, unit, progress, what)
+                                      : vertex_unit(m, f, unit, progress, what);
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    progress(what, f.fragments.size(), f.fragments.size());
+    return r;
+  };
+
+  RenderResult result;
+  result.scene = f.scene;
+  result.mask = mask_of(f);
+  result.regions = f.regions;
+  result.scanline = f.height / 2;
+  result.reference = render_one(ref, Backend::float_ref);
+  result.reference.metrics = compare(result.reference.image, result.reference.image, result.mask);
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    MethodResult r = render_one(*chosen[i], backends[i]);
+    r.metrics = compare(result.reference.image, r.image, result.mask);
+    for (const auto& region : result.regions) {
+      r.region_metrics.push_back(compare(result.reference.image, r.image, region.second));
+    }
+    result.results.push_back(std::move(r));
+  }
+  return result;
+}
+
+std::string metrics_markdown(const RenderResult& r) {
+  std::string s =
+      "| method | backend | colour correctness (eq. 6.1) | PSNR (dB) | max error | pixels |";
+  std::string rule = "|---|---|---|---|---|---|";
+  for (const auto& region : r.regions) {
+    s += fmt::format(" cc {} |", region.first);
+    rule += "---|";
+  }
+  s += "\n" + rule + "\n";
+  for (const MethodResult& m : r.results) {
+    s += fmt::format(
+        "| {} | {} | {:.4f} | {} | {} | {} |", m.method, backend_name(m.backend),
+        m.metrics.colour_correctness,
+        std::isinf(m.metrics.psnr) ? std::string("inf") : fmt::format("{:.2f}", m.metrics.psnr),
+        m.metrics.max_error, m.metrics.pixels);
+    for (const ImageMetrics& rm : m.region_metrics)
+      s += fmt::format(" {:.4f} |", rm.colour_correctness);
+    s += "\n";
+  }
+  return s;
+}
+
+std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path& dir,
+                                           int scanline) {
+  const int height = r.reference.image.height();
+  const int row = scanline < 0 ? r.scanline : scanline;
+  if (row >= height) {
+    throw Error(fmt::format("--scanline {} is outside the image (0..{})", row, height - 1));
+  }
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("cannot create {}: {}", dir.string(), ec.message()));
+  { OutputFile probe(dir / ".phongsim-write-test"); }  // unwritable: fail before any output
+
+  std::vector<fs::path> written;
+  const auto path = [&](std::string_view suffix) {
+    return dir / fmt::format("{}_{}", r.scene, suffix);
+  };
+  std::vector<std::vector<Image>> cells;
+  std::vector<std::string> labels;
+  std::vector<Curve> curves{
+      {r.reference.method + " (reference)", illumination_row(r.reference.image, row)}};
+  for (const MethodResult& m : r.results) {
+    const Image diff = difference_image(r.reference.image, m.image);
+    write_png(m.image, path(m.method + ".png"));
+    write_png(diff, path(m.method + "_diff.png"));
+    written.push_back(path(m.method + ".png"));
+    written.push_back(path(m.method + "_diff.png"));
+    cells.push_back({m.image, diff});
+    labels.push_back(fmt::format("{} [{}]", m.method, backend_name(m.backend)));
+    curves.push_back({labels.back(), illumination_row(m.image, row)});
+  }
+  const Image g = grid(cells, labels,
+                       {"image", fmt::format("difference from {} (eq. 6.2)", r.reference.method)},
+                       fmt::format("{}", r.scene));
+  write_png(g, path("grid.png"));
+  written.push_back(path("grid.png"));
+  write_png(
+      plot_curves(curves, fmt::format("{}: illumination along row {} (eq. 6.3)", r.scene, row)),
+      path("scanline.png"));
+  written.push_back(path("scanline.png"));
+
+  OutputFile csv(path("metrics.csv"));
+  std::string text = "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds\n";
+  for (const MethodResult& m : r.results) {
+    text += fmt::format("{},{},{:.6f},{:.4f},{},{},{:.3f}\n", m.method, backend_name(m.backend),
+                        m.metrics.colour_correctness, m.metrics.psnr, m.metrics.max_error,
+                        m.metrics.pixels, m.seconds);
+  }
+  std::fputs(text.c_str(), csv.get());
+  csv.commit();
+  written.push_back(path("metrics.csv"));
+  OutputFile md(path("metrics.md"));
+  std::fputs(fmt::format("Scene {}, reference {} (float)\n\n{}", r.scene, r.reference.method,
+                         metrics_markdown(r))
+                 .c_str(),
+             md.get());
+  md.commit();
+  written.push_back(path("metrics.md"));
+  return written;
+}
+
+}  // namespace phongsim

@@ -1,0 +1,746 @@
+// Image utilities: PNG bytes against the PNG specification (signature, IHDR, CRCs, all five
+// filter types through a PNG built here by hand), atomic writes and read errors, Vlasic's
+// difference image and metrics on hand-computed images, text boxes, grids and plots.
+#include "sim/image.h"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "model/error.h"
+
+namespace phongsim {
+namespace {
+
+namespace fs = std::filesystem;
+using Bytes = std::vector<std::uint8_t>;
+
+fs::path TempDir(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("image_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+Bytes ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void WriteBytes(const fs::path& path, const Bytes& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
+}
+
+std::uint32_t U32(const Bytes& b, std::size_t at) {
+  return (std::uint32_t{b[at]} << 24) | (std::uint32_t{b[at + 1]} << 16) |
+         (std::uint32_t{b[at + 2]} << 8) | std::uint32_t{b[at + 3]};
+}
+
+// Deterministic pseudo-random image (an LCG; no dependence on library distributions).
+Image Noise(int w, int h, std::uint32_t seed) {
+  Image img(w, h);
+  std::uint32_t s = seed;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      s = s * 1664525u + 1013904223u;
+      img.at(x, y) = {static_cast<std::uint8_t>(s >> 24), static_cast<std::uint8_t>(s >> 16),
+                      static_cast<std::uint8_t>(s >> 8)};
+    }
+  }
+  return img;
+}
+
+Image Gradient(int w, int h) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      img.at(x, y) = {static_cast<std::uint8_t>(x * 7), static_cast<std::uint8_t>(y * 3),
+                      static_cast<std::uint8_t>((x + y) / 2)};
+    }
+  }
+  return img;
+}
+
+// Error whose message contains `part`, or a test failure.
+template <typename F>
+void ExpectErrorContaining(F&& f, const std::string& part) {
+  try {
+    f();
+    ADD_FAILURE() << "no Error thrown; expected one containing '" << part << "'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+
+// ---- Image ----
+
+TEST(Image, ConstructsFilledAndRefusesBadSizes) {
+  Image img(3, 2, {1, 2, 3});
+  EXPECT_EQ(img.width(), 3);
+  EXPECT_EQ(img.height(), 2);
+  EXPECT_EQ(img.pixels().size(), 6u);
+  for (const Rgb8& p : img.pixels()) EXPECT_EQ(p, (Rgb8{1, 2, 3}));
+  img.at(2, 1) = {9, 9, 9};
+  EXPECT_EQ(img.pixels()[5], (Rgb8{9, 9, 9}));  // row-major
+  img.at(1, 0) = {7, 7, 7};
+  EXPECT_EQ(img.pixels()[1], (Rgb8{7, 7, 7}));
+  EXPECT_NE(img, Image(3, 2, {1, 2, 3}));
+  EXPECT_EQ(Image(), Image(0, 0));
+  EXPECT_NO_THROW(Image(32768, 0));
+  EXPECT_THROW(Image(-1, 1), Error);
+  EXPECT_THROW(Image(1, -1), Error);
+  EXPECT_THROW(Image(32769, 1), Error);
+  EXPECT_THROW(Image(1, 32769), Error);
+}
+
+// ---- PNG ----
+
+int PaethPredictor(int a, int b, int c) {  // PNG spec 9.4
+  const int p = a + b - c;
+  const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+  if (pa <= pb && pa <= pc) return a;
+  if (pb <= pc) return b;
+  return c;
+}
+
+// Inverts the filters of `rows` scanlines of `width` RGB pixels as PNG spec 9.2-9.4 defines them;
+// records the filter types seen.
+Image SpecUnfilter(const Bytes& lines, int width, int rows, std::set<int>& types) {
+  const std::size_t stride = 3 * static_cast<std::size_t>(width);
+  Bytes prev(stride, 0);
+  Bytes cur(stride);
+  Image img(width, rows);
+  for (int y = 0; y < rows; ++y) {
+    const std::size_t at = static_cast<std::size_t>(y) * (stride + 1);
+    const int type = lines.at(at);
+    types.insert(type);
+    for (std::size_t i = 0; i < stride; ++i) {
+      const int a = i >= 3 ? cur[i - 3] : 0, b = prev[i], c = i >= 3 ? prev[i - 3] : 0;
+      const int pred = type == 0   ? 0
+                       : type == 1 ? a
+                       : type == 2 ? b
+                       : type == 3 ? (a + b) / 2
+                                   : PaethPredictor(a, b, c);
+      cur[i] = static_cast<std::uint8_t>(lines.at(at + 1 + i) + pred);
+    }
+    for (int x = 0; x < width; ++x) img.at(x, y) = {cur[3 * x], cur[3 * x + 1], cur[3 * x + 2]};
+    prev = cur;
+  }
+  return img;
+}
+
+// The concatenated IDAT payload of a PNG file's bytes.
+Bytes IdatOf(const Bytes& b) {
+  Bytes idat;
+  for (std::size_t at = 8; at + 12 <= b.size();) {
+    const std::uint32_t len = U32(b, at);
+    if (std::string(reinterpret_cast<const char*>(&b[at + 4]), 4) == "IDAT") {
+      idat.insert(idat.end(), &b[at + 8], &b[at + 8 + len]);
+    }
+    at += 12 + len;
+  }
+  return idat;
+}
+
+TEST(Png, RoundTripsSeveralSizes) {
+  const fs::path dir = TempDir("roundtrip");
+  std::vector<Image> images = {Image(1, 1, {200, 10, 30}),
+                               Noise(1, 1, 5),
+                               Noise(3, 1, 1),
+                               Noise(1, 4, 2),
+                               Noise(7, 5, 3),
+                               Gradient(33, 17),
+                               Noise(257, 31, 4),
+                               Gradient(200, 120)};
+  // A large flat area plus noise: every filter type is likely to win some row.
+  Image mixed = Gradient(101, 60);
+  for (int y = 20; y < 40; ++y) {
+    for (int x = 0; x < 101; ++x) mixed.at(x, y) = Noise(101, 60, 9).at(x, y);
+  }
+  images.push_back(mixed);
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const fs::path path = dir / ("img" + std::to_string(i) + ".png");
+    write_png(images[i], path);
+    EXPECT_EQ(read_png(path), images[i]) << images[i].width() << "x" << images[i].height();
+  }
+  // Only the PNGs: no temporary files left behind.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()),
+            static_cast<long>(images.size()));
+}
+
+TEST(Png, OverwritesAnExistingFile) {
+  const fs::path path = TempDir("overwrite") / "a.png";
+  write_png(Noise(5, 5, 1), path);
+  write_png(Noise(4, 6, 2), path);
+  EXPECT_EQ(read_png(path), Noise(4, 6, 2));
+}
+
+TEST(Png, SignatureHeaderAndChunkCrcsFollowTheSpec) {
+  const fs::path path = TempDir("header") / "h.png";
+  write_png(Noise(300, 2, 7), path);
+  const Bytes b = ReadBytes(path);
+  ASSERT_GT(b.size(), 8u + 25u + 12u);
+  // PNG spec 5.2: the signature.
+  const Bytes signature = {137, 80, 78, 71, 13, 10, 26, 10};
+  EXPECT_EQ(Bytes(b.begin(), b.begin() + 8), signature);
+  // IHDR: length 13, type, width 300 = 0x12C, height 2, depth 8, colour type 2 (truecolour),
+  // compression 0, filter method 0, no interlace.
+  const Bytes ihdr = {0, 0, 0, 13, 'I', 'H', 'D', 'R', 0, 0, 0x01, 0x2C, 0, 0, 0, 2, 8, 2, 0, 0, 0};
+  EXPECT_EQ(Bytes(b.begin() + 8, b.begin() + 8 + 21), ihdr);
+
+  // Walk the chunks: every CRC (over type and data) is right; IHDR, IDAT..., IEND.
+  std::vector<std::string> types;
+  Bytes idat;
+  std::size_t at = 8;
+  while (at < b.size()) {
+    ASSERT_LE(at + 12, b.size());
+    const std::uint32_t len = U32(b, at);
+    ASSERT_LE(at + 12 + len, b.size());
+    types.emplace_back(reinterpret_cast<const char*>(&b[at + 4]), 4);
+    EXPECT_EQ(U32(b, at + 8 + len), crc32(0L, &b[at + 4], len + 4)) << types.back();
+    if (types.back() == "IDAT") idat.insert(idat.end(), &b[at + 8], &b[at + 8 + len]);
+    at += 12 + len;
+  }
+  EXPECT_EQ(at, b.size());
+  ASSERT_GE(types.size(), 3u);
+  EXPECT_EQ(types.front(), "IHDR");
+  EXPECT_EQ(types.back(), "IEND");
+  for (std::size_t i = 1; i + 1 < types.size(); ++i) EXPECT_EQ(types[i], "IDAT");
+
+  // The zlib stream holds exactly height rows of 1 filter byte + 3 * width bytes, filters 0-4.
+  Bytes raw(2 * (1 + 3 * 300) + 16);
+  uLongf raw_len = raw.size();
+  ASSERT_EQ(uncompress(raw.data(), &raw_len, idat.data(), idat.size()), Z_OK);
+  EXPECT_EQ(raw_len, 2u * (1 + 3 * 300));
+  EXPECT_LE(raw[0], 4);
+  EXPECT_LE(raw[1 + 3 * 300], 4);
+}
+
+TEST(Png, WriterFiltersDecodeBySpec) {
+  // Inflate and unfilter the writer's output with the test's own reading of the spec.
+  const fs::path dir = TempDir("writerfilters");
+  Image mixed = Gradient(120, 40);
+  const Image noise = Noise(120, 40, 3);
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 120; ++x) {
+      if ((y / 5) % 2 == 1) mixed.at(x, y) = noise.at(x, y);
+      if (y % 7 == 0) mixed.at(x, y) = {static_cast<std::uint8_t>(x % 3 * 90), 17, 17};
+    }
+  }
+  std::set<int> types;
+  for (const Image& img : {mixed, Noise(5, 3, 1), Gradient(1, 9), Image(4, 4, {9, 8, 7})}) {
+    const fs::path path = dir / "w.png";
+    write_png(img, path);
+    const Bytes idat = IdatOf(ReadBytes(path));
+    const std::size_t size = static_cast<std::size_t>(img.height()) * (1 + 3 * img.width());
+    Bytes lines(size + 1);
+    uLongf len = lines.size();
+    ASSERT_EQ(uncompress(lines.data(), &len, idat.data(), idat.size()), Z_OK);
+    ASSERT_EQ(len, size);
+    EXPECT_EQ(SpecUnfilter(lines, img.width(), img.height(), types), img);
+  }
+  // The writer picks filters per row: on these images every type wins somewhere, so the
+  // check above covers the encoding of all five.
+  EXPECT_EQ(types, (std::set<int>{0, 1, 2, 3, 4}));
+}
+
+TEST(Png, IendChunkHasTheWellKnownCrc) {
+  const fs::path path = TempDir("iend") / "e.png";
+  write_png(Image(2, 2, {1, 1, 1}), path);
+  const Bytes b = ReadBytes(path);
+  ASSERT_GE(b.size(), 12u);
+  const Bytes iend = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  EXPECT_EQ(Bytes(b.end() - 12, b.end()), iend);
+}
+
+TEST(Png, FailedWritesLeaveNoFile) {
+  const fs::path dir = TempDir("unwritable");
+  const fs::path missing = dir / "no-such-dir" / "x.png";
+  ExpectErrorContaining([&] { write_png(Noise(4, 4, 1), missing); },
+                        "cannot write " + missing.string());
+  EXPECT_FALSE(fs::exists(missing));
+  EXPECT_FALSE(fs::exists(missing.parent_path()));
+
+  // A directory in the way.
+  fs::create_directories(dir / "d.png");
+  ExpectErrorContaining([&] { write_png(Noise(4, 4, 1), dir / "d.png"); }, "cannot write");
+
+  // PNG has no empty images: refused before anything is created.
+  ExpectErrorContaining([&] { write_png(Image(0, 3), dir / "empty.png"); },
+                        "cannot write " + (dir / "empty.png").string());
+  EXPECT_FALSE(fs::exists(dir / "empty.png"));
+  // Nothing but the directory made above.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+// A PNG assembled by hand from the specification, one filter type per row, so the reader's
+// reconstruction of each type is checked independently of the writer's choices.
+void PutU32(Bytes& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(v >> shift));
+}
+
+void PutChunk(Bytes& out, const std::string& type, const Bytes& data) {
+  PutU32(out, static_cast<std::uint32_t>(data.size()));
+  Bytes td(type.begin(), type.end());
+  td.insert(td.end(), data.begin(), data.end());
+  out.insert(out.end(), td.begin(), td.end());
+  PutU32(out, static_cast<std::uint32_t>(crc32(0L, td.data(), static_cast<uInt>(td.size()))));
+}
+
+Bytes HandMadePng(int w, int h, const Bytes& ihdr_tail, const Bytes& scanlines) {
+  Bytes out = {137, 80, 78, 71, 13, 10, 26, 10};
+  Bytes ihdr;
+  PutU32(ihdr, static_cast<std::uint32_t>(w));
+  PutU32(ihdr, static_cast<std::uint32_t>(h));
+  ihdr.insert(ihdr.end(), ihdr_tail.begin(), ihdr_tail.end());
+  PutChunk(out, "IHDR", ihdr);
+  PutChunk(out, "tEXt", {'C', 'o', 'm', 'm', 'e', 'n', 't', 0, 'h', 'i'});  // ancillary: skipped
+  PutChunk(out, "PLTE", {255, 0, 0});  // allowed in truecolour PNGs (a suggested palette)
+  uLongf len = compressBound(scanlines.size());
+  Bytes z(len);
+  EXPECT_EQ(compress(z.data(), &len, scanlines.data(), scanlines.size()), Z_OK);
+  z.resize(len);
+  // Split the data over two IDAT chunks: readers must concatenate them.
+  const std::size_t half = z.size() / 2;
+  PutChunk(out, "IDAT", Bytes(z.begin(), z.begin() + static_cast<long>(half)));
+  PutChunk(out, "IDAT", Bytes(z.begin() + static_cast<long>(half), z.end()));
+  PutChunk(out, "IEND", {});
+  return out;
+}
+
+TEST(Png, ReadsAllFiveFilterTypes) {
+  const int w = 3;
+  Image img = Noise(w, 6, 11);
+  // Row 4 (Paeth) pixel 1 hits both tie rules (spec 9.4: a before b before c). With c = 100:
+  // red a = 80, b = 110 gives pa = pc = 10 < pb = 20, so a; green a = 110, b = 80 gives
+  // pb = pc = 10 < pa = 20, so b.
+  img.at(0, 3) = {100, 100, 100};  // c
+  img.at(1, 3) = {110, 80, 7};     // b
+  img.at(0, 4) = {80, 110, 200};   // a
+  const int stride = 3 * w;
+  const auto raw = [&](int y, int i) -> int {
+    if (y < 0 || i < 0) return 0;
+    const Rgb8 p = img.at(i / 3, y);
+    return i % 3 == 0 ? p.r : i % 3 == 1 ? p.g : p.b;
+  };
+  Bytes lines;
+  for (int y = 0; y < img.height(); ++y) {
+    const int type = y % 5;  // rows 0-4: None, Sub, Up, Average, Paeth; row 5: None again
+    lines.push_back(static_cast<std::uint8_t>(type));
+    for (int i = 0; i < stride; ++i) {
+      const int x = raw(y, i), a = raw(y, i - 3), b = raw(y - 1, i), c = raw(y - 1, i - 3);
+      const int pred = type == 0   ? 0
+                       : type == 1 ? a
+                       : type == 2 ? b
+                       : type == 3 ? (a + b) / 2
+                                   : PaethPredictor(a, b, c);
+      lines.push_back(static_cast<std::uint8_t>((x - pred) & 0xff));
+    }
+  }
+  const fs::path path = TempDir("filters") / "f.png";
+  WriteBytes(path, HandMadePng(w, img.height(), {8, 2, 0, 0, 0}, lines));
+  EXPECT_EQ(read_png(path), img);
+}
+
+TEST(Png, ReadErrorsNameTheFile) {
+  const fs::path dir = TempDir("readerr");
+  ExpectErrorContaining([&] { (void)read_png(dir / "absent.png"); }, (dir / "absent.png").string());
+
+  const fs::path garbage = dir / "garbage.png";
+  WriteBytes(garbage, Bytes(100, 0x5a));
+  ExpectErrorContaining([&] { (void)read_png(garbage); }, garbage.string());
+  WriteBytes(garbage, {});
+  ExpectErrorContaining([&] { (void)read_png(garbage); }, garbage.string());
+
+  // Every truncation of a valid file is refused.
+  const fs::path good = dir / "good.png";
+  write_png(Noise(9, 4, 3), good);
+  const Bytes b = ReadBytes(good);
+  const fs::path cut = dir / "cut.png";
+  for (std::size_t n = 0; n < b.size(); ++n) {
+    WriteBytes(cut, Bytes(b.begin(), b.begin() + static_cast<long>(n)));
+    ExpectErrorContaining([&] { (void)read_png(cut); }, cut.string());
+  }
+
+  // A flipped bit in the image data fails its CRC.
+  Bytes flipped = b;
+  flipped[8 + 25 + 8 + 2] ^= 0x01;  // inside the first IDAT's data
+  WriteBytes(cut, flipped);
+  ExpectErrorContaining([&] { (void)read_png(cut); }, "CRC");
+
+  // Valid PNGs of kinds the reader does not take, with correct CRCs.
+  const Bytes rgb_line = {0, 1, 2, 3};
+  const fs::path other = dir / "other.png";
+  WriteBytes(other, HandMadePng(1, 1, {8, 6, 0, 0, 0}, {0, 1, 2, 3, 4}));  // RGBA
+  ExpectErrorContaining([&] { (void)read_png(other); }, other.string() + ": unsupported");
+  WriteBytes(other, HandMadePng(1, 1, {16, 2, 0, 0, 0}, {0, 0, 1, 0, 2, 0, 3}));  // 16-bit
+  ExpectErrorContaining([&] { (void)read_png(other); }, "bit depth 16");
+  WriteBytes(other, HandMadePng(1, 1, {8, 2, 0, 0, 1}, rgb_line));  // Adam7
+  ExpectErrorContaining([&] { (void)read_png(other); }, "interlaced");
+  WriteBytes(other, HandMadePng(1, 1, {8, 2, 0, 0, 0}, {5, 1, 2, 3}));  // filter type 5
+  ExpectErrorContaining([&] { (void)read_png(other); }, "filter type 5");
+  WriteBytes(other, HandMadePng(2, 1, {8, 2, 0, 0, 0}, rgb_line));  // too little data
+  ExpectErrorContaining([&] { (void)read_png(other); }, other.string());
+  WriteBytes(other, HandMadePng(1, 1, {8, 2, 0, 0, 0}, {0, 1, 2, 3, 0, 1, 2, 3}));  // too much
+  ExpectErrorContaining([&] { (void)read_png(other); }, "more image data");
+  WriteBytes(other, HandMadePng(1, 1, {8, 2, 0, 0, 0}, rgb_line));  // and the control
+  EXPECT_EQ(read_png(other), Image(1, 1, {1, 2, 3}));
+}
+
+// ---- evaluation ----
+
+TEST(DifferenceImage, FollowsEquation62) {
+  Image a(4, 1);
+  Image b(4, 1);
+  a.at(0, 0) = {0, 255, 10};  // |d| = 0, 255, 1
+  b.at(0, 0) = {0, 0, 11};
+  a.at(1, 0) = {128, 30, 200};  // |d| = 2, 30, 200
+  b.at(1, 0) = {130, 0, 0};
+  const Image d = difference_image(a, b);
+  ASSERT_EQ(d.width(), 4);
+  ASSERT_EQ(d.height(), 1);
+  // 255 * (1/255)^0.1 = 146.516..., 255 * (2/255)^0.1 = 157.03...
+  EXPECT_EQ(d.at(0, 0), (Rgb8{0, 255, 147}));
+  EXPECT_EQ(d.at(1, 0).r, 157);
+  EXPECT_EQ(d.at(1, 0).g, std::lround(255 * std::pow(30 / 255.0, 0.1)));
+  EXPECT_EQ(d.at(1, 0).b, std::lround(255 * std::pow(200 / 255.0, 0.1)));
+  EXPECT_EQ(d.at(2, 0), (Rgb8{0, 0, 0}));
+  EXPECT_EQ(difference_image(b, a), d);  // |A - B|: symmetric
+  EXPECT_THROW((void)difference_image(Image(2, 2), Image(2, 3)), Error);
+}
+
+TEST(Compare, HandComputedTwoByTwo) {
+  const Image ref(2, 2, {100, 100, 100});
+  Image img = ref;
+  img.at(1, 0) = {110, 100, 100};  // |d| 10
+  img.at(0, 1) = {100, 90, 100};   // |d| 10
+  img.at(1, 1) = {100, 100, 70};   // |d| 30
+  const ImageMetrics m = compare(ref, img);
+  EXPECT_EQ(m.pixels, 4u);
+  EXPECT_EQ(m.max_error, 30);
+  EXPECT_DOUBLE_EQ(m.colour_correctness, 1.0 - 50.0 / (3 * 255 * 4));
+  EXPECT_DOUBLE_EQ(m.psnr, 10 * std::log10(255.0 * 255.0 / ((100 + 100 + 900) / 12.0)));
+  EXPECT_NEAR(m.psnr, 28.51, 0.01);
+
+  // Mask: only the top row (pixels 0 and 1, row-major).
+  const ImageMetrics top = compare(ref, img, {true, true, false, false});
+  EXPECT_EQ(top.pixels, 2u);
+  EXPECT_EQ(top.max_error, 10);
+  EXPECT_DOUBLE_EQ(top.colour_correctness, 1.0 - 10.0 / (3 * 255 * 2));
+  EXPECT_DOUBLE_EQ(top.psnr, 10 * std::log10(255.0 * 255.0 / (100 / 6.0)));
+
+  // Only the unchanged pixel: identical within the mask.
+  const ImageMetrics same = compare(ref, img, {true, false, false, false});
+  EXPECT_EQ(same.pixels, 1u);
+  EXPECT_EQ(same.max_error, 0);
+  EXPECT_EQ(same.colour_correctness, 1.0);
+  EXPECT_TRUE(std::isinf(same.psnr) && same.psnr > 0);
+
+  EXPECT_EQ(compare(ref, img, {false, false, false, false}).pixels, 0u);
+  EXPECT_THROW((void)compare(ref, img, {true, true, true}), Error);
+  EXPECT_THROW((void)compare(ref, Image(2, 1)), Error);
+}
+
+TEST(Compare, IdenticalAndOppositeExtremes) {
+  const Image a = Noise(5, 3, 1);
+  const ImageMetrics same = compare(a, a);
+  EXPECT_EQ(same.pixels, 15u);
+  EXPECT_EQ(same.colour_correctness, 1.0);
+  EXPECT_TRUE(std::isinf(same.psnr) && same.psnr > 0);
+  EXPECT_EQ(same.max_error, 0);
+  // Black against white: every channel off by 255, so cc 0 and PSNR 10 log10(1) = 0 dB.
+  const ImageMetrics worst = compare(Image(3, 3, {0, 0, 0}), Image(3, 3, {255, 255, 255}));
+  EXPECT_DOUBLE_EQ(worst.colour_correctness, 0.0);
+  EXPECT_DOUBLE_EQ(worst.psnr, 0.0);
+  EXPECT_EQ(worst.max_error, 255);
+}
+
+TEST(Illumination, RowFollowsEquation63) {
+  Image img(3, 2, {9, 9, 9});
+  img.at(0, 1) = {255, 255, 255};
+  img.at(1, 1) = {0, 0, 0};
+  img.at(2, 1) = {255, 0, 51};
+  const std::vector<double> row = illumination_row(img, 1);
+  ASSERT_EQ(row.size(), 3u);
+  EXPECT_DOUBLE_EQ(row[0], 1.0);
+  EXPECT_DOUBLE_EQ(row[1], 0.0);
+  EXPECT_DOUBLE_EQ(row[2], 306.0 / 765.0);
+  EXPECT_DOUBLE_EQ(illumination_row(img, 0)[2], 27.0 / 765.0);
+  EXPECT_THROW((void)illumination_row(img, 2), Error);
+  EXPECT_THROW((void)illumination_row(img, -1), Error);
+}
+
+// ---- text, blit, grid ----
+
+struct Ink {
+  int count = 0;
+  int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1;  // bounding box, inclusive
+};
+
+Ink InkOf(const Image& img, Rgb8 colour) {
+  Ink ink;
+  for (int y = 0; y < img.height(); ++y) {
+    for (int x = 0; x < img.width(); ++x) {
+      if (img.at(x, y) != colour) continue;
+      ++ink.count;
+      ink.x0 = std::min(ink.x0, x);
+      ink.y0 = std::min(ink.y0, y);
+      ink.x1 = std::max(ink.x1, x);
+      ink.y1 = std::max(ink.y1, y);
+    }
+  }
+  return ink;
+}
+
+TEST(Text, SizesFollowTheFiveBySevenCell) {
+  EXPECT_EQ(text_width(""), 0);
+  EXPECT_EQ(text_width("A"), 5);
+  EXPECT_EQ(text_width("AB"), 11);  // 5 + 1 gap + 5
+  EXPECT_EQ(text_width("AB", 3), 33);
+  EXPECT_GE(text_height(), 7);
+  EXPECT_EQ(text_height(4), 4 * text_height());
+  EXPECT_EQ(text_width("\xc3\xa9"), 5);  // one UTF-8 character
+  EXPECT_THROW((void)text_width("A", 0), Error);
+}
+
+TEST(Text, DrawsInsideItsBoxOnly) {
+  const Rgb8 ink{200, 0, 0};
+  for (const int scale : {1, 2, 3}) {
+    for (const std::string_view text : {"Hello, world!", "gjpqy_", "M", "|", "0.25 (x, y)"}) {
+      Image img(300, 60, kWhite);
+      draw_text(img, 7, 5, text, ink, scale);
+      const Ink got = InkOf(img, ink);
+      ASSERT_GT(got.count, 0) << text;
+      EXPECT_EQ(got.count + InkOf(img, kWhite).count, 300 * 60) << "only the two colours";
+      EXPECT_GE(got.x0, 7) << text;
+      EXPECT_GE(got.y0, 5) << text;
+      EXPECT_LT(got.x1, 7 + text_width(text, scale)) << text;
+      EXPECT_LT(got.y1, 5 + text_height(scale)) << text;
+    }
+  }
+  // 'M' spans its full width: the box is tight.
+  Image m(20, 20, kWhite);
+  draw_text(m, 2, 3, "M", kBlack, 2);
+  const Ink got = InkOf(m, kBlack);
+  EXPECT_EQ(got.x0, 2);
+  EXPECT_EQ(got.x1, 2 + text_width("M", 2) - 1);
+  EXPECT_EQ(got.y0, 3);
+}
+
+TEST(Text, EveryGlyphIsDistinctAndScalesByArea) {
+  std::set<std::string> seen;  // glyph bitmaps as '#'/'.' strings
+  for (int c = 32; c <= 126; ++c) {
+    const std::string s(1, static_cast<char>(c));
+    Image img(text_width(s), text_height(), kWhite);
+    draw_text(img, 0, 0, s, kBlack);
+    const int count = InkOf(img, kBlack).count;
+    if (c == ' ') {
+      EXPECT_EQ(count, 0);
+    } else {
+      EXPECT_GT(count, 0) << s;
+    }
+    std::string bitmap;
+    for (const Rgb8& px : img.pixels()) bitmap += px == kBlack ? '#' : '.';
+    EXPECT_TRUE(seen.insert(bitmap).second) << "glyph '" << s << "' repeats another";
+    Image big(text_width(s, 3), text_height(3), kWhite);
+    draw_text(big, 0, 0, s, kBlack, 3);
+    EXPECT_EQ(InkOf(big, kBlack).count, 9 * count) << s;
+  }
+}
+
+TEST(Text, OutOfRangeCharactersDrawAsQuestionMark) {
+  Image q(40, 12, kWhite);
+  draw_text(q, 1, 1, "a?b", kBlack);
+  for (const std::string& odd : {std::string("a\x01"
+                                             "b"),
+                                 std::string("a\x7f"
+                                             "b"),
+                                 std::string("a\xc3\xa9"
+                                             "b"),
+                                 std::string("a\tb")}) {
+    Image img(40, 12, kWhite);
+    draw_text(img, 1, 1, odd, kBlack);
+    EXPECT_EQ(img, q);
+  }
+}
+
+TEST(Text, ClipsAtTheEdges) {
+  Image img(10, 6, kWhite);
+  draw_text(img, -3, -4, "WWWW", kBlack, 2);
+  EXPECT_GT(InkOf(img, kBlack).count, 0);
+  EXPECT_THROW(draw_text(img, 0, 0, "x", kBlack, 0), Error);
+}
+
+TEST(Blit, CopiesAndClips) {
+  const Image src = Noise(4, 3, 2);
+  Image dst(6, 5, kWhite);
+  blit(dst, src, 1, 2);
+  for (int y = 0; y < 5; ++y) {
+    for (int x = 0; x < 6; ++x) {
+      const bool inside = x >= 1 && x < 5 && y >= 2 && y < 5;
+      EXPECT_EQ(dst.at(x, y), inside ? src.at(x - 1, y - 2) : kWhite) << x << "," << y;
+    }
+  }
+  Image corner(3, 3, kWhite);
+  blit(corner, src, -2, -1);  // only src (2..3, 1..2) lands, at (0..1, 0..1)
+  for (int y = 0; y < 3; ++y) {
+    for (int x = 0; x < 3; ++x) {
+      EXPECT_EQ(corner.at(x, y), x < 2 && y < 2 ? src.at(x + 2, y + 1) : kWhite) << x << "," << y;
+    }
+  }
+  blit(corner, src, 3, 0);  // entirely outside: nothing
+  blit(corner, src, -4, -3);
+  EXPECT_EQ(corner.at(2, 2), kWhite);
+}
+
+TEST(Grid, EveryCellIsShownWhole) {
+  const Rgb8 red{255, 0, 0}, green{0, 255, 0}, blue{0, 0, 255};
+  std::vector<std::vector<Image>> cells = {{Image(10, 10, red), Image(20, 5, green)},
+                                           {Image(30, 8, blue)}};
+  const Image g = grid(cells, {}, {});
+  EXPECT_EQ(InkOf(g, red).count, 100);
+  EXPECT_EQ(InkOf(g, green).count, 100);
+  EXPECT_EQ(InkOf(g, blue).count, 240);
+  EXPECT_EQ(InkOf(g, kWhite).count, g.width() * g.height() - 440);
+  // The second row sits below the first, columns side by side with padding.
+  EXPECT_GT(InkOf(g, blue).y0, InkOf(g, red).y1);
+  EXPECT_GT(InkOf(g, green).x0, InkOf(g, red).x1);
+  EXPECT_GE(g.width(), 30 + 20);
+  EXPECT_GE(g.height(), 10 + 8);
+  // An empty cell keeps its slot blank.
+  cells[1].insert(cells[1].begin(), Image());
+  const Image h = grid(cells, {}, {});
+  EXPECT_EQ(InkOf(h, blue).count, 240);
+  EXPECT_GT(InkOf(h, blue).x0, InkOf(h, red).x1);  // now in the second column
+}
+
+TEST(Grid, SizeAccountsForLabelsAndTitle) {
+  const Rgb8 red{255, 0, 0};
+  const std::vector<std::vector<Image>> cells = {{Image(10, 10, red), Image(10, 10, red)},
+                                                 {Image(10, 10, red), Image(10, 10, red)}};
+  const Image plain = grid(cells, {}, {});
+  EXPECT_EQ(InkOf(plain, kBlack).count, 0);
+
+  const std::string row_label = "a long row label";
+  const Image rows = grid(cells, {row_label, "r2"}, {});
+  EXPECT_GE(rows.width(), plain.width() + text_width(row_label));
+  EXPECT_EQ(rows.height(), plain.height());
+  EXPECT_LT(InkOf(rows, kBlack).x1 + 2, InkOf(rows, red).x0);  // labels left, not touching
+  EXPECT_EQ(InkOf(rows, red).count, 400);
+
+  const std::string col_label = "column label wider than its cells";
+  const Image cols = grid(cells, {}, {col_label, "c2"});
+  EXPECT_GE(cols.width(), plain.width() - 10 + text_width(col_label));
+  EXPECT_GE(cols.height(), plain.height() + text_height());
+  EXPECT_LT(InkOf(cols, kBlack).y1, InkOf(cols, red).y0);  // labels above the cells
+  EXPECT_EQ(InkOf(cols, red).count, 400);
+
+  const std::string title = "A title that is wider than the whole grid";
+  const Image titled = grid(cells, {}, {}, title);
+  EXPECT_GE(titled.width(), text_width(title));
+  EXPECT_GE(titled.height(), plain.height() + text_height());
+  EXPECT_EQ(InkOf(titled, red).count, 400);
+
+  const Image all = grid(cells, {row_label, "r2"}, {col_label, "c2"}, title);
+  EXPECT_GE(all.width(), text_width(row_label) + text_width(col_label) + 10);
+  EXPECT_GE(all.height(), 20 + 2 * text_height());
+  EXPECT_EQ(InkOf(all, red).count, 400);
+
+  const Image empty = grid({}, {}, {});
+  EXPECT_FALSE(empty.empty());
+}
+
+// ---- plot ----
+
+TEST(Plot, SizeColoursAndCurvePlacement) {
+  std::vector<Curve> curves = {{"top", std::vector<double>(100, 1.0)},
+                               {"bottom", std::vector<double>(100, 0.0)},
+                               {"short", std::vector<double>(10, 0.5)}};
+  const Image p = plot_curves(curves, "scanline y = 12");
+  EXPECT_EQ(p.width(), 800);
+  EXPECT_EQ(p.height(), 400);
+  const Image q = plot_curves(curves, "t", 300, 200);
+  EXPECT_EQ(q.width(), 300);
+  EXPECT_EQ(q.height(), 200);
+
+  std::set<std::tuple<int, int, int>> colours;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const Rgb8 c = curve_colour(i);
+    EXPECT_NE(c, kWhite);
+    EXPECT_NE(c, kBlack);
+    colours.insert({c.r, c.g, c.b});
+  }
+  EXPECT_EQ(colours.size(), 8u);
+
+  // Only the left 70% of the image: the legend swatches are at the right.
+  const auto left_ink = [&](Rgb8 colour) {
+    Image crop(p.width() * 7 / 10, p.height());
+    blit(crop, p, 0, 0);
+    return InkOf(crop, colour);
+  };
+  const Ink top = left_ink(curve_colour(0));
+  const Ink bottom = left_ink(curve_colour(1));
+  const Ink mid = left_ink(curve_colour(2));
+  ASSERT_GT(top.count, 100);
+  ASSERT_GT(bottom.count, 100);
+  ASSERT_GT(mid.count, 10);
+  EXPECT_LT(top.y1, mid.y0);  // 1 above 0.5 above 0
+  EXPECT_LT(mid.y1, bottom.y0);
+  EXPECT_LE(top.y1 - top.y0, 2);  // constant curves are horizontal lines
+  EXPECT_GT(top.x1 - top.x0, p.width() / 3);
+  EXPECT_LT(mid.x1 - mid.x0, (top.x1 - top.x0) / 5);  // 10 of 100 columns
+  EXPECT_LE(mid.x0, top.x0 + 2);                      // both start at column 0
+  // The legend shows each colour at the right as well.
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_GT(InkOf(p, curve_colour(i)).x1, p.width() * 7 / 10) << i;
+  }
+  // Text (title, ticks, legend labels) is black.
+  EXPECT_GT(InkOf(p, kBlack).count, 500);
+}
+
+TEST(Plot, ClampsOutOfRangeValuesAndBreaksAtNaN) {
+  const std::vector<Curve> curves = {{"one", std::vector<double>(50, 1.0)},
+                                     {"above", std::vector<double>(50, 7.0)},
+                                     {"below", std::vector<double>(50, -3.0)},
+                                     {"zero", std::vector<double>(50, 0.0)},
+                                     {"gap", {0.5, NAN, 0.5}}};
+  const Image p = plot_curves(curves, "clamp");
+  Image left(p.width() * 7 / 10, p.height());
+  blit(left, p, 0, 0);
+  // Drawn over each other: "above" hides "one" at the top, "below" is hidden by "zero".
+  const Ink above = InkOf(left, curve_colour(1));
+  EXPECT_GT(above.count, 100);
+  EXPECT_EQ(InkOf(left, curve_colour(0)).count, 0);
+  EXPECT_EQ(InkOf(left, curve_colour(2)).count, 0);
+  EXPECT_GT(InkOf(left, curve_colour(3)).count, 100);
+  EXPECT_LT(above.y1, InkOf(left, curve_colour(3)).y0);
+  // The NaN leaves two isolated points (2x2 each), no segment between them.
+  const Ink gap = InkOf(left, curve_colour(4));
+  EXPECT_GT(gap.count, 0);
+  EXPECT_LE(gap.count, 8);
+  EXPECT_GT(gap.x1 - gap.x0, 10);
+}
+
+TEST(Plot, OddInputsAndTooSmall) {
+  const std::vector<Curve> odd = {{"nan", {0.2, NAN, 0.4, 2.0, -1.0}}, {"one", {0.5}}, {"", {}}};
+  const Image p = plot_curves(odd, "");
+  EXPECT_EQ(p.width(), 800);
+  EXPECT_GT(InkOf(p, curve_colour(1)).count, 0);
+  EXPECT_EQ(plot_curves({}, "empty").width(), 800);
+  EXPECT_THROW((void)plot_curves(odd, "x", 40, 30), Error);
+  EXPECT_THROW((void)plot_curves(odd, "x", 800, -5), Error);
+}
+
+}  // namespace
+}  // namespace phongsim

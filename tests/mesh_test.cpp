@@ -1,0 +1,878 @@
+// Tests for meshes and scenes (sim/mesh.*, sim/scene.*): the built-in objects' counts, closedness,
+// winding and normals checked against independent geometric facts (Euler's formula, exact
+// volumes, support points), the teapot's tessellation, the OBJ/PLY readers on small files
+// written here, and the scene-file loader's values and one-line error messages.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "model/error.h"
+#include "model/vec3.h"
+#include "sim/mesh.h"
+#include "sim/scene.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using phongsim::Error;
+using phongsim::Mesh;
+using phongsim::Vec3;
+
+constexpr double kPi = 3.14159265358979323846;
+
+template <class F>
+std::string ErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not a phongsim::Error: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "no error";
+  return "";
+}
+
+bool StartsWith(const std::string& s, const std::string& prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+// A fresh directory per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() / fmt::format("phongsim_mesh_test_{}_{}_{}", getpid(),
+                                                    info->test_suite_name(), info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  fs::path Write(const std::string& name, const std::string& content) const {
+    const fs::path p = path_ / name;
+    std::ofstream out(p, std::ios::binary);
+    out << content;
+    return p;
+  }
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+Vec3 Centroid(const Mesh& m, const std::array<int, 3>& t) {
+  return (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3);
+}
+
+Vec3 FaceNormal(const Mesh& m, const std::array<int, 3>& t) {
+  return cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+}
+
+// Every normal finite and of unit length, every index in range (independent of check()).
+void ExpectWellFormed(const Mesh& m) {
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    const Vec3 p = m.positions[i], n = m.normals[i];
+    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << "vertex " << i;
+    ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) << "normal " << i;
+    ASSERT_NEAR(length(n), 1.0, 1e-12) << "normal " << i;
+  }
+  for (const auto& t : m.triangles) {
+    for (const int i : t) {
+      ASSERT_GE(i, 0);
+      ASSERT_LT(i, static_cast<int>(m.positions.size()));
+    }
+  }
+  EXPECT_NO_THROW(phongsim::check(m));
+}
+
+// Directed edge -> how many triangles run it.
+std::map<std::pair<int, int>, int> DirectedEdges(const Mesh& m) {
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
+  }
+  return edges;
+}
+
+// Closed and consistently oriented: every edge is shared by exactly two triangles, which run it
+// in opposite directions.
+void ExpectClosed(const Mesh& m) {
+  const auto edges = DirectedEdges(m);
+  for (const auto& [e, count] : edges) {
+    EXPECT_EQ(count, 1) << "edge " << e.first << "->" << e.second;
+    const auto rev = edges.find({e.second, e.first});
+    EXPECT_TRUE(rev != edges.end() && rev->second == 1)
+        << "edge " << e.first << "->" << e.second << " has no opposite";
+  }
+}
+
+double SignedVolume(const Mesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles) {
+    v += dot(m.positions[t[0]], cross(m.positions[t[1]], m.positions[t[2]])) / 6;
+  }
+  return v;
+}
+
+// Convex and centred on the origin: every face normal points away from the centre.
+void ExpectOutwardConvex(const Mesh& m) {
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    EXPECT_GT(dot(FaceNormal(m, m.triangles[t]), Centroid(m, m.triangles[t])), 0)
+        << "triangle " << t;
+  }
+  EXPECT_GT(SignedVolume(m), 0);
+}
+
+// Unit sphere approximations: vertices on the sphere, normal = position.
+void ExpectOnUnitSphere(const Mesh& m) {
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    EXPECT_NEAR(length(m.positions[i]), 1.0, 1e-12) << i;
+    EXPECT_NEAR(dot(m.normals[i], m.positions[i]), 1.0, 1e-12) << i;
+  }
+}
+
+// No two vertices at the same position (a closed mesh with shared vertices).
+void ExpectDistinctPositions(const Mesh& m) {
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    for (std::size_t j = i + 1; j < m.positions.size(); ++j) {
+      EXPECT_GT(length(m.positions[i] - m.positions[j]), 1e-6) << i << " " << j;
+    }
+  }
+}
+
+// ---- Built-in objects ----
+
+TEST(Sphere, OctahedronCountsFollowEulersFormula) {
+  for (int s = 0; s <= 4; ++s) {
+    const Mesh m = phongsim::octahedron_sphere(s);
+    const int faces = 8 << (2 * s);  // 8·4^s
+    EXPECT_EQ(m.triangles.size(), static_cast<std::size_t>(faces)) << s;
+    // V - E + F = 2 with E = 3F/2.
+    EXPECT_EQ(m.positions.size(), static_cast<std::size_t>(2 + faces / 2)) << s;
+  }
+  EXPECT_EQ(phongsim::octahedron_sphere(1).triangles.size(), 32u);
+  EXPECT_EQ(phongsim::octahedron_sphere(3).triangles.size(), 512u);
+  EXPECT_THROW((void)phongsim::octahedron_sphere(-1), Error);
+}
+
+TEST(Sphere, OctahedronClosedOutwardUnit) {
+  for (int s : {0, 1, 3}) {
+    SCOPED_TRACE(s);
+    const Mesh m = phongsim::octahedron_sphere(s);
+    ExpectWellFormed(m);
+    ExpectClosed(m);
+    ExpectOutwardConvex(m);
+    ExpectOnUnitSphere(m);
+    ExpectDistinctPositions(m);
+  }
+  // The plain octahedron |x| + |y| + |z| <= 1 has volume 4/3; finer ones approach 4π/3.
+  EXPECT_NEAR(SignedVolume(phongsim::octahedron_sphere(0)), 4.0 / 3, 1e-12);
+  const double v32 = SignedVolume(phongsim::octahedron_sphere(1));
+  const double v512 = SignedVolume(phongsim::octahedron_sphere(3));
+  EXPECT_LT(v32, v512);
+  EXPECT_LT(v512, 4 * kPi / 3);
+  EXPECT_GT(v512, 0.95 * 4 * kPi / 3);
+}
+
+TEST(Dodecahedron, ThirtySixTrianglesOnTwentyVertices) {
+  const Mesh m = phongsim::dodecahedron();
+  EXPECT_EQ(m.triangles.size(), 36u);
+  EXPECT_EQ(m.positions.size(), 20u);
+  ExpectWellFormed(m);
+  ExpectClosed(m);
+  ExpectOutwardConvex(m);
+  ExpectOnUnitSphere(m);
+  ExpectDistinctPositions(m);
+  // Circumradius 1 gives edge a = 4 / (√3 (1 + √5)); a pentagon's diagonal is φ·a. Every fan
+  // triangle has two sides that are edges or diagonals of its pentagon, nothing else.
+  const double phi = (1 + std::sqrt(5.0)) / 2;
+  const double a = 4 / (std::sqrt(3.0) * (1 + std::sqrt(5.0)));
+  int edges = 0, diagonals = 0;
+  for (const auto& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const double len = length(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]);
+      if (std::abs(len - a) < 1e-12) {
+        ++edges;
+      } else if (std::abs(len - phi * a) < 1e-12) {
+        ++diagonals;
+      } else {
+        ADD_FAILURE() << "side of length " << len;
+      }
+    }
+  }
+  EXPECT_EQ(edges, 2 * 30);      // 30 edges, each in two triangles
+  EXPECT_EQ(diagonals, 2 * 24);  // 2 fan diagonals per pentagon, each in two triangles
+  // V = (15 + 7√5) / 4 · a³.
+  EXPECT_NEAR(SignedVolume(m), (15 + 7 * std::sqrt(5.0)) / 4 * a * a * a, 1e-12);
+}
+
+TEST(Sphere40, FortyTrianglesClosedOutward) {
+  const Mesh m = phongsim::sphere40();
+  EXPECT_EQ(m.triangles.size(), 40u);
+  EXPECT_EQ(m.positions.size(), 22u);
+  ExpectWellFormed(m);
+  ExpectClosed(m);
+  ExpectOutwardConvex(m);
+  ExpectOnUnitSphere(m);
+  ExpectDistinctPositions(m);
+  EXPECT_LT(SignedVolume(m), 4 * kPi / 3);
+  // Poles at ±y; every other vertex on one of 4 rings at y = cos(36° k).
+  for (const Vec3& p : m.positions) {
+    bool on_ring = std::abs(std::abs(p.y) - 1) < 1e-12;
+    for (int k = 1; k <= 4; ++k) on_ring = on_ring || std::abs(p.y - std::cos(kPi * k / 5)) < 1e-12;
+    EXPECT_TRUE(on_ring) << p.y;
+  }
+}
+
+TEST(Triangle, FacesViewerWithNormalsTiltedOutwards) {
+  const Mesh m = phongsim::single_triangle();
+  ExpectWellFormed(m);
+  ASSERT_EQ(m.triangles.size(), 1u);
+  const Vec3 fn = FaceNormal(m, m.triangles[0]);
+  EXPECT_GT(fn.z, 0);
+  EXPECT_NEAR(fn.x, 0, 1e-12);
+  EXPECT_NEAR(fn.y, 0, 1e-12);
+  const Vec3 c = Centroid(m, m.triangles[0]);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 p = m.positions[k], n = m.normals[k];
+    EXPECT_NEAR(p.z, 0, 0);
+    EXPECT_NEAR(length(p), 1.0, 1e-12);             // circumradius 1, centred on the origin
+    EXPECT_NEAR(n.z, 2 / std::sqrt(5.0), 1e-12);    // tilted atan(1/2) from +z
+    EXPECT_GT(dot(n - Vec3{0, 0, n.z}, p - c), 0);  // ... away from the centre
+  }
+}
+
+TEST(FlatNormals, OneVertexTripletPerTriangle) {
+  const Mesh m = phongsim::flat_normals_split(phongsim::octahedron_sphere(1));
+  ExpectWellFormed(m);
+  ASSERT_EQ(m.triangles.size(), 32u);
+  ASSERT_EQ(m.positions.size(), 96u);
+  for (const auto& t : m.triangles) {
+    const Vec3 n = normalized(FaceNormal(m, t));
+    for (const int i : t) EXPECT_NEAR(length(m.normals[i] - n), 0, 1e-12);
+  }
+}
+
+TEST(Check, RejectsBrokenMeshes) {
+  Mesh good = phongsim::single_triangle();
+  EXPECT_NO_THROW(phongsim::check(good));
+  Mesh m = good;
+  m.triangles[0][2] = 3;
+  EXPECT_NE(ErrorOf([&] { phongsim::check(m); }).find("vertex 3"), std::string::npos);
+  m = good;
+  m.triangles[0][0] = -1;
+  EXPECT_THROW(phongsim::check(m), Error);
+  m = good;
+  m.positions[1].y = std::nan("");
+  EXPECT_THROW(phongsim::check(m), Error);
+  m = good;
+  m.normals[2] = m.normals[2] * 2;
+  EXPECT_THROW(phongsim::check(m), Error);
+  m = good;
+  m.normals.pop_back();
+  EXPECT_THROW(phongsim::check(m), Error);
+}
+
+// ---- Teapot ----
+
+TEST(Teapot, DefaultFacetCountNearVlasics3750) {
+  const Mesh m = phongsim::teapot();
+  ExpectWellFormed(m);
+  // 32 patches · 8² cells · 2 triangles, minus one triangle per cell along the collapsed control
+  // row of the 4 lid-top and 4 bottom patches (8 · 8).
+  EXPECT_EQ(m.triangles.size(), 32u * 64 * 2 - 8 * 8);
+  EXPECT_GE(m.triangles.size(), 3750 * 0.9);
+  EXPECT_LE(m.triangles.size(), 3750 * 1.1);
+  EXPECT_EQ(phongsim::teapot(4).triangles.size(), 32u * 16 * 2 - 8 * 4);
+}
+
+TEST(Teapot, UprightOutwardAndConsistentlyWound) {
+  const Mesh m = phongsim::teapot();
+  // The data is z-up with the spout on +x and the handle on -x; rotated: +y up, resting on y = 0,
+  // lid knob at 3.15.
+  Vec3 lo = m.positions[0], hi = m.positions[0];
+  for (const Vec3& p : m.positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  EXPECT_NEAR(lo.y, 0, 1e-12);
+  EXPECT_NEAR(hi.y, 3.15, 1e-12);
+  EXPECT_NEAR(lo.x, -3.0, 0.1);  // handle
+  EXPECT_GT(hi.x, 3.2);          // spout
+  EXPECT_NEAR(lo.z, -2.0, 1e-12);
+  EXPECT_NEAR(hi.z, 2.0, 1e-12);
+
+  EXPECT_GT(phongsim::signed_volume(m), 0);
+  EXPECT_GT(SignedVolume(m), 0);
+  // Across patch seams the triangles agree in orientation: no directed edge twice.
+  for (const auto& [e, count] : DirectedEdges(m)) {
+    EXPECT_EQ(count, 1) << "edge " << e.first << "->" << e.second;
+  }
+  // Vertex normals on the front side of every triangle that uses them.
+  for (const auto& t : m.triangles) {
+    const Vec3 fn = FaceNormal(m, t);
+    for (const int i : t) EXPECT_GT(dot(m.normals[i], fn), 0) << "vertex " << i;
+  }
+  // Support points: the vertex farthest along d has a normal pointing along d (body sides,
+  // lid knob, bottom, spout tip, handle, and diagonals).
+  const std::vector<Vec3> dirs{{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},   {0, -1, 0}, {0, 0, 1},
+                               {0, 0, -1}, {1, 1, 1},  {-1, 1, -1}, {1, -1, 1}, {-1, -1, 1}};
+  for (const Vec3 d : dirs) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      if (dot(m.positions[i], d) > dot(m.positions[best], d)) best = i;
+    }
+    EXPECT_GT(dot(m.normals[best], normalized(d)), 0.5)
+        << "d = (" << d.x << ", " << d.y << ", " << d.z << ")";
+  }
+}
+
+TEST(Teapot, DegeneratePointsAndSeamsHaveOneNormal) {
+  const Mesh m = phongsim::teapot();
+  // Every pair of vertices at the same position: either a crease (normals > 60° apart) or the
+  // tessellation failed to merge them.
+  std::vector<int> order(m.positions.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const Vec3 p = m.positions[a], q = m.positions[b];
+    return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
+  });
+  int coincident = 0;
+  for (std::size_t a = 0; a < order.size(); ++a) {
+    for (std::size_t b = a + 1;
+         b < order.size() && m.positions[order[b]].x - m.positions[order[a]].x < 1e-6; ++b) {
+      if (length(m.positions[order[b]] - m.positions[order[a]]) < 1e-6) {
+        ++coincident;
+        EXPECT_LT(dot(m.normals[order[a]], m.normals[order[b]]), 0.5)
+            << "vertices " << order[a] << " and " << order[b] << " at one position";
+      }
+    }
+  }
+  // The only coincidence is where the handle's lower end touches the body, at (-2, 0.9, 0) in
+  // our axes: two different surfaces, two normals (an unwelded tessellation has hundreds).
+  EXPECT_LE(coincident, 1);
+  // The lid knob's top and the bottom's centre, where control rows collapse to a point.
+  int top = 0, bottom = 0;
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    const Vec3 p = m.positions[i];
+    if (length(p - Vec3{0, 3.15, 0}) < 1e-9) {
+      ++top;
+      EXPECT_NEAR(length(m.normals[i] - Vec3{0, 1, 0}), 0, 1e-4);
+    }
+    if (length(p) < 1e-9) {
+      ++bottom;
+      EXPECT_NEAR(length(m.normals[i] - Vec3{0, -1, 0}), 0, 1e-4);
+    }
+  }
+  EXPECT_EQ(top, 1);
+  EXPECT_EQ(bottom, 1);
+}
+
+TEST(Teapot, BptErrorsNameFileAndLine) {
+  TempDir dir;
+  const auto error = [&](const std::string& text) {
+    const fs::path p = dir.Write("t.bpt", text);
+    return ErrorOf([&] { (void)phongsim::read_teapot_bpt(p, 2); });
+  };
+  const std::string file = (dir.path() / "t.bpt").string();
+  std::string patch = "3 3\n";
+  for (int i = 0; i < 16; ++i) patch += fmt::format("{} {} 0\n", i % 4, i / 4);
+  // A flat 3 x 3 square at z = 0: 2·2² triangles, cross(Su, Sv) = +z.
+  const fs::path good = dir.Write("good.bpt", "1\n" + patch);
+  const Mesh m = phongsim::read_teapot_bpt(good, 2);
+  ExpectWellFormed(m);
+  EXPECT_EQ(m.triangles.size(), 8u);
+  EXPECT_EQ(m.positions.size(), 9u);
+  for (const Vec3& n : m.normals) EXPECT_NEAR(length(n - Vec3{0, 1, 0}), 0, 1e-12);  // z -> y
+
+  EXPECT_TRUE(StartsWith(error("x\n"), file + ":1: ")) << error("x\n");
+  EXPECT_TRUE(StartsWith(error("1\n3 2\n"), file + ":2: ")) << error("1\n3 2\n");
+  std::string bad = "1\n" + patch;
+  bad.replace(bad.find("1 0 0"), 5, "1 zero 0");
+  EXPECT_EQ(error(bad), file + ":4: malformed number 'zero'");
+  EXPECT_TRUE(StartsWith(error("2\n" + patch), file + ":18: ")) << error("2\n" + patch);
+  EXPECT_TRUE(StartsWith(error("1\n" + patch + "junk\n"), file + ":19: "));
+}
+
+// ---- OBJ ----
+
+TEST(Obj, QuadBecomesTwoTrianglesWithComputedNormals) {
+  TempDir dir;
+  const fs::path p = dir.Write("quad.obj", R"(# a unit quad in z = 0
+mtllib none.mtl
+o quad
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+vt 0 0
+g group
+s off
+usemtl whatever
+f 1 2 3 4
+)");
+  const Mesh m = phongsim::read_obj(p);
+  ExpectWellFormed(m);
+  ASSERT_EQ(m.triangles.size(), 2u);
+  ASSERT_EQ(m.positions.size(), 4u);
+  const std::vector<Vec3> expected{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  for (const auto& t : m.triangles) {
+    EXPECT_GT(FaceNormal(m, t).z, 0);
+    for (const int i : t) EXPECT_EQ(m.normals[i], (Vec3{0, 0, 1}));
+  }
+  // Fan from corner 0: (0, 1, 2), (0, 2, 3), in the file's vertex positions.
+  EXPECT_EQ(m.positions[m.triangles[0][0]], expected[0]);
+  EXPECT_EQ(m.positions[m.triangles[0][1]], expected[1]);
+  EXPECT_EQ(m.positions[m.triangles[0][2]], expected[2]);
+  EXPECT_EQ(m.positions[m.triangles[1][0]], expected[0]);
+  EXPECT_EQ(m.positions[m.triangles[1][1]], expected[2]);
+  EXPECT_EQ(m.positions[m.triangles[1][2]], expected[3]);
+}
+
+TEST(Obj, NegativeIndicesAndCornerForms) {
+  TempDir dir;
+  // Negative indices count back from the vertices read so far; the second face uses i//k with
+  // an unnormalized normal, the third i/j/k, the fourth i/j (computed normal).
+  const fs::path p = dir.Write("forms.obj", R"(v 0 0 0
+v 2 0 0
+v 0 2 0
+f -3 -2 -1
+vn 0 0 4
+v 0 0 1
+v 2 0 1
+v 0 2 1
+f 4//1 5//1 6//-1
+vt 0 0
+vn 1 0 0
+f 1/1/2 2/1/2 3/-1/2
+f 4/1 5/1 6/1
+)");
+  const Mesh m = phongsim::read_obj(p);
+  ExpectWellFormed(m);
+  ASSERT_EQ(m.triangles.size(), 4u);
+  EXPECT_EQ(m.positions[m.triangles[0][0]], (Vec3{0, 0, 0}));
+  EXPECT_EQ(m.positions[m.triangles[0][2]], (Vec3{0, 2, 0}));
+  EXPECT_EQ(m.normals[m.triangles[0][0]], (Vec3{0, 0, 1}));  // computed: +z face
+  EXPECT_EQ(m.positions[m.triangles[1][1]], (Vec3{2, 0, 1}));
+  EXPECT_EQ(m.normals[m.triangles[1][1]], (Vec3{0, 0, 1}));  // given (0, 0, 4), normalized
+  EXPECT_EQ(m.normals[m.triangles[2][1]], (Vec3{1, 0, 0}));  // given
+  EXPECT_EQ(m.normals[m.triangles[3][2]], (Vec3{0, 0, 1}));  // computed
+  // (position, normal) pairs are vertices: 3 computed + 3 with vn 1 + 3 with vn 2 + 3 computed;
+  // the last three share positions 4..6 with the second face but not its normal.
+  EXPECT_EQ(m.positions.size(), 12u);
+}
+
+TEST(Obj, ErrorsNameFileAndLine) {
+  TempDir dir;
+  const auto error = [&](const std::string& text) {
+    return ErrorOf([&] { (void)phongsim::read_obj(dir.Write("bad.obj", text)); });
+  };
+  const std::string f = (dir.path() / "bad.obj").string();
+  const std::string v3 = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_EQ(error("v 0 0 0\n# c\nv 1 x 0\n"), f + ":3: malformed number 'x'");
+  EXPECT_EQ(error("v 0 0\n"), f + ":1: 'v' needs 3 coordinates, got 2");
+  EXPECT_EQ(error("vn 0 0 1 1\n"), f + ":1: 'vn' needs 3 coordinates, got 4");
+  EXPECT_EQ(error(v3 + "f 1 2 4\n"), f + ":4: vertex index 4 out of range (there are 3 vertices)");
+  EXPECT_EQ(error(v3 + "f 1 2 -4\n"), f + ":4: vertex index in '-4' out of range");
+  EXPECT_EQ(error(v3 + "f 1 2\n"), f + ":4: face with 2 vertices (needs at least 3)");
+  EXPECT_EQ(error(v3 + "f 1 2 0\n"), f + ":4: malformed vertex index '0' in '0'");
+  EXPECT_EQ(error(v3 + "f 1 2 3x\n"), f + ":4: malformed vertex index '3x' in '3x'");
+  EXPECT_EQ(error(v3 + "f 1//1 2//1 3//1\n"),
+            f + ":4: normal index 1 out of range (there are 0 normals)");
+  EXPECT_EQ(error(v3 + "f 1/2/3/4 2 3\n"), f + ":4: malformed face corner '1/2/3/4'");
+  EXPECT_EQ(error(v3 + "o nothing\n"), f + ": no triangles (no 'f' statements)");
+  EXPECT_TRUE(StartsWith(ErrorOf([&] { (void)phongsim::read_obj(dir.path() / "missing.obj"); }),
+                         (dir.path() / "missing.obj").string() + ": "));
+}
+
+// ---- PLY ----
+
+// The cube [-1, 1]³ as 6 quads, counter-clockwise from outside, plus properties and an element
+// the reader must skip.
+const std::vector<Vec3> kCube{{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                              {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+const std::vector<std::array<int, 4>> kCubeFaces{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                 {2, 3, 7, 6}, {0, 4, 7, 3}, {1, 2, 6, 5}};
+
+std::string CubeHeader(const std::string& format) {
+  return "ply\nformat " + format +
+         " 1.0\ncomment test cube\nelement vertex 8\nproperty float x\nproperty uchar red\n"
+         "property float y\nproperty double z\nelement face 6\nproperty short flags\n"
+         "property list uchar int vertex_indices\nelement edge 1\nproperty int vertex1\n"
+         "property int vertex2\nend_header\n";
+}
+
+std::string AsciiCube() {
+  std::string s = CubeHeader("ascii");
+  for (const Vec3& p : kCube) s += fmt::format("{} 200 {} {}\n", p.x, p.y, p.z);
+  for (const auto& f : kCubeFaces) s += fmt::format("7 4 {} {} {} {}\n", f[0], f[1], f[2], f[3]);
+  s += "0 1\n";
+  return s;
+}
+
+template <class T>
+void Put(std::string& s, T v) {
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &v, sizeof(T));
+  // Little-endian regardless of the host: least significant byte first.
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, bytes, sizeof(T));
+  if constexpr (sizeof(T) > 1) {
+    const std::uint16_t probe = 1;
+    unsigned char first = 0;
+    std::memcpy(&first, &probe, 1);
+    if (first == 0) std::reverse(bytes, bytes + sizeof(T));
+  }
+  s.append(reinterpret_cast<const char*>(bytes), sizeof(T));
+}
+
+std::string BinaryCube() {
+  std::string s = CubeHeader("binary_little_endian");
+  for (const Vec3& p : kCube) {
+    Put(s, static_cast<float>(p.x));
+    Put(s, static_cast<std::uint8_t>(200));
+    Put(s, static_cast<float>(p.y));
+    Put(s, p.z);
+  }
+  for (const auto& f : kCubeFaces) {
+    Put(s, static_cast<std::int16_t>(7));
+    Put(s, static_cast<std::uint8_t>(4));
+    for (const int i : f) Put(s, static_cast<std::int32_t>(i));
+  }
+  Put(s, static_cast<std::int32_t>(0));
+  Put(s, static_cast<std::int32_t>(1));
+  return s;
+}
+
+void ExpectCube(const Mesh& m) {
+  ExpectWellFormed(m);
+  ASSERT_EQ(m.positions, kCube);
+  ASSERT_EQ(m.triangles.size(), 12u);
+  ExpectClosed(m);
+  ExpectOutwardConvex(m);
+  EXPECT_NEAR(SignedVolume(m), 8, 1e-12);
+  // Area-weighted normals of a cube corner: (±1, ±1, ±1)/√3 (each corner touches three faces;
+  // the two triangles of a face that meet at a corner share its area there unevenly, but the
+  // sum per face is still along the face normal).
+  for (std::size_t i = 0; i < kCube.size(); ++i) {
+    EXPECT_GT(dot(m.normals[i], kCube[i]), 0) << i;
+  }
+}
+
+TEST(Ply, AsciiAndBinaryCubesAreTheSameMesh) {
+  TempDir dir;
+  const Mesh a = phongsim::read_ply(dir.Write("cube_a.ply", AsciiCube()));
+  const Mesh b = phongsim::read_ply(dir.Write("cube_b.ply", BinaryCube()));
+  ExpectCube(a);
+  ExpectCube(b);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.normals, b.normals);
+  EXPECT_EQ(a.triangles, b.triangles);
+  // read_mesh dispatches by extension, case-insensitively.
+  const Mesh c = phongsim::read_mesh(dir.Write("CUBE.PLY", AsciiCube()));
+  EXPECT_EQ(c.triangles, a.triangles);
+  EXPECT_THROW((void)phongsim::read_mesh(dir.Write("cube.stl", AsciiCube())), Error);
+}
+
+TEST(Ply, GivenNormalsAreUsed) {
+  TempDir dir;
+  const std::string text = R"(ply
+format ascii 1.0
+element vertex 3
+property float x
+property float y
+property float z
+property float nx
+property float ny
+property float nz
+element face 1
+property list uchar uint vertex_index
+end_header
+0 0 0 0 0 3
+1 0 0 0 0.6 0.8
+0 1 0 0 0 1
+3 0 1 2
+)";
+  const Mesh m = phongsim::read_ply(dir.Write("tri.ply", text));
+  ExpectWellFormed(m);
+  EXPECT_EQ(m.normals[0], (Vec3{0, 0, 1}));
+  EXPECT_EQ(m.normals[1], (Vec3{0, 0.6, 0.8}));
+}
+
+TEST(Ply, ErrorsNameFileAndLine) {
+  TempDir dir;
+  const std::string f = (dir.path() / "bad.ply").string();
+  const auto error = [&](const std::string& text) {
+    return ErrorOf([&] { (void)phongsim::read_ply(dir.Write("bad.ply", text)); });
+  };
+  std::string s = AsciiCube();
+  // The header has 15 lines: vertex k is on line 16 + k, face k on line 24 + k, the edge on 30.
+  s.replace(s.find("\n1 200 -1 -1\n"), 13, "\n1 200 -1 -l\n");
+  EXPECT_EQ(error(s), f + ":17: vertex 1: malformed number '-l'");
+  s = AsciiCube();
+  s.replace(s.find("7 4 0 1 5 4"), 11, "7 4 0 1 5 8");
+  EXPECT_EQ(error(s), f + ":26: face 2: vertex index 8 out of range (there are 8)");
+  s = AsciiCube();
+  s.replace(s.find("7 4 4 5 6 7"), 11, "7 2 4 5 0 0");
+  EXPECT_EQ(error(s), f + ":25: face 1 has 2 vertices (needs at least 3)");
+  s = AsciiCube();
+  s.erase(s.rfind("0 1\n"));
+  EXPECT_EQ(error(s), f + ":30: data ends before edge 0");
+  EXPECT_EQ(error(AsciiCube() + "5\n"), f + ":31: unexpected data after the last element");
+  EXPECT_EQ(error(CubeHeader("binary_big_endian")),
+            f + ":2: binary_big_endian PLY is unsupported (use ascii or binary_little_endian)");
+  EXPECT_EQ(error("ply\nformat ascii 1.0\nelement vertex 1\nproperty foo x\nend_header\n"),
+            f + ":4: unknown property type 'foo'");
+  EXPECT_EQ(error("ply\nformat ascii 1.0\nelemnt vertex 1\n"),
+            f + ":3: unknown header line 'elemnt'");
+  EXPECT_EQ(error("PLY\n"), f + ":1: not a PLY file (first line is not 'ply')");
+  EXPECT_EQ(error("ply\nformat ascii 1.0\n"), f + ":2: header without 'end_header'");
+  std::string bin = BinaryCube();
+  EXPECT_EQ(error(bin.substr(0, bin.size() - 3)), f + ": binary data ends inside edge 0");
+  EXPECT_EQ(error("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header\n"),
+            f + ": no triangles (no faces)");
+}
+
+// ---- normalize_to_unit_box ----
+
+TEST(Normalize, LargestExtentBecomesTwoCentredOnOrigin) {
+  Mesh m = phongsim::single_triangle();
+  for (Vec3& p : m.positions) p = p * 3 + Vec3{10, -4, 7};
+  phongsim::normalize_to_unit_box(m);
+  // The triangle's box is √3 x 1.5 x 0 (circumradius 1): x spans [-1, 1], y ±1.5/√3.
+  const double hy = 1.5 / std::sqrt(3.0);
+  EXPECT_NEAR(m.positions[0].x, -1, 1e-12);
+  EXPECT_NEAR(m.positions[1].x, 1, 1e-12);
+  EXPECT_NEAR(m.positions[0].y, -hy, 1e-12);
+  EXPECT_NEAR(m.positions[2].y, hy, 1e-12);
+  for (const Vec3& p : m.positions) EXPECT_NEAR(p.z, 0, 1e-12);
+  Mesh flat;
+  flat.positions = {{1, 1, 1}};
+  flat.normals = {{0, 1, 0}};
+  EXPECT_THROW(phongsim::normalize_to_unit_box(flat), Error);
+}
+
+// ---- Scenes ----
+
+TEST(Scene, BuiltinScenes) {
+  const std::vector<std::string> names = phongsim::builtin_scene_names();
+  EXPECT_EQ(names, (std::vector<std::string>{"kbsphere32", "kbsphere512", "triangle",
+                                             "dodecahedron", "sphere40", "teapot"}));
+  const std::map<std::string, std::size_t> triangles{{"kbsphere32", 32}, {"kbsphere512", 512},
+                                                     {"triangle", 1},    {"dodecahedron", 36},
+                                                     {"sphere40", 40},   {"teapot", 4032}};
+  for (const auto& name : names) {
+    SCOPED_TRACE(name);
+    const phongsim::Scene sc = phongsim::builtin_scene(name);
+    EXPECT_EQ(sc.name, name);
+    ExpectWellFormed(sc.mesh);
+    EXPECT_EQ(sc.mesh.triangles.size(), triangles.at(name));
+    ASSERT_EQ(sc.lights.size(), 1u);
+    EXPECT_EQ(sc.camera.fov_deg, 0);  // all orthographic
+    for (const Vec3& p : sc.mesh.positions) {
+      EXPECT_LE(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}), 1 + 1e-12);
+    }
+    // The light is in front (on the viewer's side) of the object.
+    EXPECT_GT(dot(sc.lights[0].position, sc.camera.eye - sc.camera.target), 0);
+  }
+  // Kuijk–Blake: one point light at four radii from the unit sphere's centre.
+  const auto kb = phongsim::builtin_scene("kbsphere512");
+  EXPECT_FALSE(kb.lights[0].at_infinity);
+  EXPECT_NEAR(length(kb.lights[0].position), 4, 1e-12);
+  // Vlasic: the teapot's light is directional and white, the triangle's a point light.
+  const auto tp = phongsim::builtin_scene("teapot");
+  EXPECT_TRUE(tp.lights[0].at_infinity);
+  EXPECT_NEAR(length(tp.lights[0].position), 1, 1e-12);
+  EXPECT_EQ(tp.lights[0].colour, (Vec3{1, 1, 1}));
+  EXPECT_FALSE(phongsim::builtin_scene("triangle").lights[0].at_infinity);
+  EXPECT_EQ(phongsim::builtin_scene("teapot", 2).mesh.triangles.size(), 32u * 4 * 2 - 8 * 2);
+
+  const std::string e = ErrorOf([] { (void)phongsim::builtin_scene("teapots"); });
+  EXPECT_EQ(e,
+            "unknown scene 'teapots' (built-in mesh scenes: kbsphere32, kbsphere512, triangle, "
+            "dodecahedron, sphere40, teapot)");
+}
+
+constexpr const char* kTetraObj = R"(v 0 0 0
+v 4 0 0
+v 0 4 0
+v 0 0 8
+f 1 3 2
+f 1 2 4
+f 1 4 3
+f 2 3 4
+)";
+
+TEST(Scene, GoodFileLoads) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "meshes");
+  dir.Write("meshes/tetra.obj", kTetraObj);
+  const fs::path p = dir.Write("scene.toml", R"(# a test scene
+name = "tetra"
+mesh = "meshes/tetra.obj"
+width = 320
+height = 200
+background = [0.1, 0.2, 0.3]
+
+[camera]
+eye = [1, 2, 10]
+target = [0, 0.5, 0]
+up = [0, 1, 0]
+fov = 30
+ortho_height = 3
+
+[material]
+ambient = [0.1, 0.1, 0.1]
+diffuse = [0.5, 0.25, 0]
+specular = [1, 1, 1]
+shininess = 64.5
+
+[[light]]
+position = [3, 4, 5]
+
+[[light]]
+direction = [0, 0, -2]
+colour = [0.5, 0.5, 1]
+)");
+  const phongsim::Scene sc = phongsim::load_scene(p);
+  EXPECT_EQ(sc.name, "tetra");
+  EXPECT_EQ(sc.width, 320);
+  EXPECT_EQ(sc.height, 200);
+  EXPECT_EQ(sc.background, (Vec3{0.1, 0.2, 0.3}));
+  EXPECT_EQ(sc.camera.eye, (Vec3{1, 2, 10}));
+  EXPECT_EQ(sc.camera.target, (Vec3{0, 0.5, 0}));
+  EXPECT_EQ(sc.camera.up, (Vec3{0, 1, 0}));
+  EXPECT_EQ(sc.camera.fov_deg, 30);
+  EXPECT_EQ(sc.camera.ortho_height, 3);
+  EXPECT_EQ(sc.material.ambient, (Vec3{0.1, 0.1, 0.1}));
+  EXPECT_EQ(sc.material.diffuse, (Vec3{0.5, 0.25, 0}));
+  EXPECT_EQ(sc.material.specular, (Vec3{1, 1, 1}));
+  EXPECT_EQ(sc.material.shininess, 64.5);
+  ASSERT_EQ(sc.lights.size(), 2u);
+  EXPECT_EQ(sc.lights[0].position, (Vec3{3, 4, 5}));
+  EXPECT_FALSE(sc.lights[0].at_infinity);
+  EXPECT_EQ(sc.lights[0].colour, (Vec3{1, 1, 1}));
+  EXPECT_EQ(sc.lights[1].position, (Vec3{0, 0, -1}));
+  EXPECT_TRUE(sc.lights[1].at_infinity);
+  EXPECT_EQ(sc.lights[1].colour, (Vec3{0.5, 0.5, 1}));
+  // Normalized by default: the 4 x 4 x 8 tetrahedron's box becomes 1 x 1 x 2, centred.
+  ExpectWellFormed(sc.mesh);
+  ASSERT_EQ(sc.mesh.triangles.size(), 4u);
+  ExpectClosed(sc.mesh);
+  EXPECT_GT(SignedVolume(sc.mesh), 0);
+  for (const Vec3& q : sc.mesh.positions) {
+    EXPECT_TRUE(q == (Vec3{-0.5, -0.5, -1}) || q == (Vec3{0.5, -0.5, -1}) ||
+                q == (Vec3{-0.5, 0.5, -1}) || q == (Vec3{-0.5, -0.5, 1}));
+  }
+}
+
+TEST(Scene, DefaultsBuiltinMeshAndNoNormalize) {
+  TempDir dir;
+  dir.Write("tetra.obj", kTetraObj);
+  const phongsim::Scene a = phongsim::load_scene(dir.Write(
+      "pot.toml", "builtin = \"teapot\"\nresolution = 2\n[[light]]\nposition = [0, 0, 4]\n"));
+  EXPECT_EQ(a.name, "pot");
+  EXPECT_EQ(a.mesh.triangles.size(), 32u * 4 * 2 - 8 * 2);
+  EXPECT_EQ(a.width, 256);
+  EXPECT_EQ(a.camera.eye, (Vec3{0, 0, 5}));
+  EXPECT_EQ(a.camera.fov_deg, 0);
+  EXPECT_EQ(a.camera.ortho_height, 2.4);
+  EXPECT_EQ(a.material.diffuse, (Vec3{0.8, 0.8, 0.8}));
+  EXPECT_EQ(a.material.shininess, 32);
+  const phongsim::Scene b = phongsim::load_scene(dir.Write(
+      "raw.toml", "mesh = \"tetra.obj\"\nnormalize = false\n[[light]]\ndirection = [0, 3, 4]\n"));
+  // Not normalized: the file's coordinates (vertex order is first use: 1, 3, 2, 4).
+  EXPECT_EQ(b.mesh.positions, (std::vector<Vec3>{{0, 0, 0}, {0, 4, 0}, {4, 0, 0}, {0, 0, 8}}));
+  EXPECT_NEAR(length(b.lights[0].position - Vec3{0, 0.6, 0.8}), 0, 1e-15);
+  EXPECT_TRUE(b.lights[0].at_infinity);
+}
+
+TEST(Scene, BadFilesGiveOneLineErrors) {
+  TempDir dir;
+  dir.Write("tetra.obj", kTetraObj);
+  const std::string f = (dir.path() / "bad.toml").string();
+  const std::string ok_mesh = "mesh = \"tetra.obj\"\n";
+  const std::string ok_light = "[[light]]\nposition = [0, 0, 4]\n";
+  const auto error = [&](const std::string& text) {
+    const std::string e = ErrorOf([&] { (void)phongsim::load_scene(dir.Write("bad.toml", text)); });
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    return e;
+  };
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {ok_mesh + "colour = 1\n" + ok_light,
+       ":2: unknown key 'colour' (expected name, mesh, builtin, resolution, normalize, width, "
+       "height, background, [camera], [material], [[light]])"},
+      {ok_mesh + "width = \"big\"\n" + ok_light, ":2: 'width' must be an integer in [1, 4096]"},
+      {ok_mesh + "width = 0\n" + ok_light, ":2: 'width' must be an integer in [1, 4096]"},
+      {ok_mesh + "height = 4097\n" + ok_light, ":2: 'height' must be an integer in [1, 4096]"},
+      {ok_mesh + "background = [1, 0]\n" + ok_light,
+       ":2: 'background' must be an array of 3 numbers (has 2)"},
+      {ok_mesh + "background = [1, 0, \"x\"]\n" + ok_light, ":2: 'background' must be a number"},
+      {ok_mesh + "background = [1, 0, 1.5]\n" + ok_light,
+       ":2: 'background' components must be in [0, 1]"},
+      {"width = 10\n" + ok_light, ":1: missing 'mesh = \"<file>\"' or 'builtin = \"<scene>\"'"},
+      {ok_mesh + "builtin = \"teapot\"\n" + ok_light,
+       ":2: give either 'mesh' or 'builtin', not both"},
+      {"builtin = \"shinyballs\"\n" + ok_light,
+       ":1: unknown built-in scene 'shinyballs' (known: kbsphere32, kbsphere512, triangle, "
+       "dodecahedron, sphere40, teapot)"},
+      {"builtin = \"triangle\"\nresolution = 4\n" + ok_light,
+       ":2: 'resolution' applies only to builtin = \"teapot\""},
+      {ok_mesh, ":1: no light: add at least one [[light]] with a position or direction"},
+      {ok_mesh + "[[light]]\nposition = [0, 0, 4]\ndirection = [0, 0, 1]\n",
+       ":4: [[light]] has both 'position' and 'direction' (give exactly one)"},
+      {ok_mesh + "[[light]]\ncolour = [1, 1, 1]\n",
+       ":2: [[light]] needs 'position = [x, y, z]' or 'direction = [x, y, z]'"},
+      {ok_mesh + "[[light]]\ndirection = [0, 0, 0]\n", ":3: 'direction' must not be zero"},
+      {ok_mesh + "[[light]]\nposition = [0, 0, 4]\ncolor = [1, 1, 1]\n",
+       ":4: [[light]] unknown key 'color' (expected position or direction, colour)"},
+      {ok_mesh + "light = 3\n", ":2: 'light' must be an array of tables ([[light]])"},
+      {ok_mesh + ok_light + "[material]\nshininess = 0\n", ":5: 'shininess' must be > 0"},
+      {ok_mesh + ok_light + "[material]\ndiffuse = [0.5, -0.1, 0]\n",
+       ":5: 'diffuse' components must be in [0, 1]"},
+      {ok_mesh + ok_light + "[material]\nshiny = 3\n",
+       ":5: [material] unknown key 'shiny' (expected ambient, diffuse, specular, shininess)"},
+      {ok_mesh + ok_light + "[camera]\nfov = 180\n", ":5: 'fov' must be in [0, 180) degrees"},
+      {ok_mesh + ok_light + "[camera]\neye = [0, 0]\n",
+       ":5: 'eye' must be an array of 3 numbers (has 2)"},
+      {ok_mesh + ok_light + "[camera]\northo_height = -1\n", ":5: 'ortho_height' must be > 0"},
+      {ok_mesh + ok_light + "[camera]\nup = [0, 0, 1]\n",
+       ":4: [camera] 'up' is zero or parallel to the viewing direction"},
+      {ok_mesh + ok_light + "[camera]\neye = [0, 0, 0]\n", ":4: [camera] eye and target coincide"},
+      {ok_mesh + "camera = 5\n" + ok_light, ":2: 'camera' must be a table ([camera])"},
+      {ok_mesh + "normalize = 1\n" + ok_light, ":2: 'normalize' must be true or false"},
+      {"name = \"\"\n" + ok_mesh + ok_light, ":1: 'name' must be a non-empty string"},
+      {"mesh = \"nothere.obj\"\n" + ok_light,
+       ":1: cannot read mesh file '" + (dir.path() / "nothere.obj").string() + "'"},
+  };
+  for (const auto& [text, expected] : cases) {
+    EXPECT_EQ(error(text), f + expected) << text;
+  }
+  // TOML syntax errors name the line too.
+  EXPECT_TRUE(StartsWith(error(ok_mesh + "width = = 3\n"), f + ":2: ")) << error("width = = 3");
+  // Errors inside the mesh file name the mesh file.
+  dir.Write("broken.obj", "v 0 0 0\nv 1 0 zero\n");
+  EXPECT_EQ(error("mesh = \"broken.obj\"\n" + ok_light),
+            (dir.path() / "broken.obj").string() + ":2: malformed number 'zero'");
+  EXPECT_TRUE(StartsWith(ErrorOf([&] { (void)phongsim::load_scene(dir.path() / "absent.toml"); }),
+                         (dir.path() / "absent.toml").string() + ": "));
+}
+
+}  // namespace
