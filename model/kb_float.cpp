@@ -206,10 +206,6 @@ QuadParams fit(double n) {
 
 // ---- vectors ----
 
-Vec3 cross3(Vec3 u, Vec3 v) {
-  return {u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-}
-
 Vec3 unit(Vec3 v, const char* what) {
   const double len = length(v);
   if (!std::isfinite(len) || len == 0) {
@@ -226,13 +222,13 @@ Vec3 any_perpendicular(Vec3 u) {
   const double az = std::abs(u.z);
   const Vec3 e =
       (ax <= ay && ax <= az) ? Vec3{1, 0, 0} : (ay <= az ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
-  return normalized(cross3(u, e));
+  return normalized(cross(u, e));
 }
 
 // Pole (unit normal of the plane) of the great circle from unit u to unit v, oriented so that
 // the rotation from u to v is positive about it; the zero vector when u and v are parallel.
 Vec3 pole(Vec3 u, Vec3 v) {
-  const Vec3 k = cross3(u, v);
+  const Vec3 k = cross(u, v);
   const double len = length(k);
   return len > 0 ? k * (1 / len) : Vec3{};
 }
@@ -241,7 +237,7 @@ Vec3 pole(Vec3 u, Vec3 v) {
 Vec3 rotate(Vec3 v, Vec3 k, double angle) {
   const double c = std::cos(angle);
   const double s = std::sin(angle);
-  return v * c + cross3(k, v) * s + k * (dot(k, v) * (1 - c));
+  return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
 }
 
 // x wrapped into (-π, π].
@@ -388,7 +384,7 @@ double rms_error(QuadParams p, double n) {
 
 // ---- angular interpolation ----
 
-double angle(Vec3 u, Vec3 v) { return std::atan2(length(cross3(u, v)), dot(u, v)); }
+double angle(Vec3 u, Vec3 v) { return std::atan2(length(cross(u, v)), dot(u, v)); }
 
 Vec3 slerp(Vec3 u, Vec3 v, double t) {
   u = unit(u, "slerp: u");
@@ -400,7 +396,7 @@ Vec3 slerp(Vec3 u, Vec3 v, double t) {
   }
   // Rotating u about the pole by t·angle(u, v); k × u is the unit tangent towards v.
   const double w = t * angle(u, v);
-  return u * std::cos(w) + cross3(k, u) * std::sin(w);
+  return u * std::cos(w) + cross(k, u) * std::sin(w);
 }
 
 double cos_exact(Vec3 n1, Vec3 n2, Vec3 l1, Vec3 l2, double t) {
@@ -448,7 +444,7 @@ Decomposition decompose(Vec3 n1, Vec3 n2, Vec3 l1, Vec3 l2) {
     if (p == Vec3{}) p = any_perpendicular(n1);
   }
   const Vec3 e1 = n1;
-  const Vec3 e2 = cross3(p, e1);
+  const Vec3 e2 = cross(p, e1);
   const auto horizontal = [&](Vec3 x) { return std::hypot(dot(x, e1), dot(x, e2)); };
   const auto lon = [&](Vec3 x) { return std::atan2(dot(x, e2), dot(x, e1)); };
   const auto lat = [&](Vec3 x) { return std::atan2(dot(x, p), horizontal(x)); };
@@ -504,7 +500,7 @@ ScanlineAngles one_vector_from_v(Vec3 v1, Vec3 v2) {
   if (cos_s == 0) return {0.0, omega, 0.0};  // O is the pole: V ⟂ O all along
   const Vec3 s = foot * (1 / cos_s);
   // ν: signed angle from S to V1, positive along the travel direction k × S.
-  const double nu = std::atan2(dot(v1, cross3(k, s)), dot(v1, s));
+  const double nu = std::atan2(dot(v1, cross(k, s)), dot(v1, s));
   return {nu, omega, cos_s};
 }
 

@@ -423,10 +423,6 @@ TEST(KbErrors, SummaryTable) {
 
 // ---- angular interpolation (section 1.2) ----
 
-Vec3 cross(Vec3 u, Vec3 v) {
-  return {u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-}
-
 Vec3 random_unit(std::mt19937_64& rng) {
   std::normal_distribution<double> g;
   return phongsim::normalized(Vec3{g(rng), g(rng), g(rng)});
