@@ -194,7 +194,6 @@ struct RenderCli {
   std::string backend = "auto";
   std::string out_dir = "render";
   std::string json;
-  int scanline = -1;
   bool quiet = false;
 };
 
@@ -203,7 +202,7 @@ int cmd_render(RenderCli c) {
   std::optional<OutputFile> json;
   if (!c.json.empty()) json.emplace(c.json);  // unwritable: fail before rendering
   const RenderResult r = render(c.options, render_progress(c.quiet));
-  const auto files = write_render_outputs(r, c.out_dir, c.scanline);
+  const auto files = write_render_outputs(r, c.out_dir);
   fmt::print("{}: {} x {} pixels ({} object pixels), reference {} (float)\n{}", r.scene,
              r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
              r.reference.method, metrics_markdown(r));
@@ -591,7 +590,7 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--reference", render_cli.options.reference,
                          "reference method for metrics and difference images (default phong, "
                          "float)");
-  render_cmd->add_option("--scanline", render_cli.scanline,
+  render_cmd->add_option("--scanline", render_cli.options.scanline,
                          "row of the scanline illumination plot (default: the middle)");
   render_cmd->add_option("--out", render_cli.out_dir, "output directory")->capture_default_str();
   render_cmd->add_option("--json", render_cli.json, "write a JSON summary here");

@@ -11,6 +11,9 @@
 
 #include "model/config.h"
 #include "model/error.h"
+#include "model/kb.h"
+#include "model/kb_float.h"
+#include "model/kb_setup.h"
 #include "model/lyon.h"
 #include "model/lyon_float.h"
 #include "model/quad.h"
@@ -32,7 +35,16 @@ constexpr std::string_view kShinyballs = "shinyballs";
 
 // ---- Methods ----
 
-enum class Kind { flat, gouraud, gouraud4, quadratic, pixel };
+enum class Kind {
+  flat,
+  gouraud,
+  gouraud4,
+  quadratic,
+  pixel,
+  kb_exact,
+  kb_decompose,
+  kb_one_vector
+};
 
 struct Method {
   MethodInfo info;
@@ -107,6 +119,17 @@ const std::vector<Method>& methods() {
         "lyon/halfway_fig8", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 1, 0); }},
+      {{"kb-exact",
+        "Kuijk-Blake eq. 1: N, L, H rotated along each span, exact angles, quadratic cos^n", "",
+        true},
+       Kind::kb_exact},
+      {{"kb-decomp", "Kuijk-Blake eq. 2: angle decomposed into two linear angles, quadratic cos^n",
+        "", true},
+       Kind::kb_decompose},
+      {{"kb-onevec",
+        "Kuijk-Blake eq. 4: one linear angle per span, quadratic cos^n (unit: kb engine)",
+        "kb/default", true},
+       Kind::kb_one_vector},
       {{"torrance-sparrow", "exp(-(4n/2) acos(H*.N)^2), Blinn's D2 (row 11)", "", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::torrance_sparrow, n, l, v, s); }},
@@ -169,6 +192,7 @@ class Unit {
   // Every output of `vectors` (flattened raw inputs), in order.
   std::vector<std::int64_t> run(const std::vector<std::int64_t>& vectors,
                                 const RenderProgress& progress, std::string_view what) {
+    model_->reset();  // the kb engine keeps span state between words
     const std::size_t n_in = model_->inputs().size();
     const std::size_t n_out = model_->outputs().size();
     const std::uint64_t count = vectors.size() / n_in;
@@ -636,6 +660,168 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
   return img;
 }
 
+// ---- Kuijk-Blake angular interpolation (seed 001, section 1.2) ----
+// Per triangle and row: the span of the triangle's covered pixels; N (normalized barycentric
+// interpolation), the light direction L and the halfway vector H = (L + V)/|L + V| at the two end
+// pixels' centres; along the span N, L, H rotate at constant rates (t = 0 .. 1). Diffuse
+// cos α(N, L) and specular cos^n β(N, H) through the three-piece quadratic (n for the diffuse
+// term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's specfuns.m).
+
+struct KbEnds {
+  int y = 0, x0 = 0, x1 = 0;  // span x0..x1 of row y
+  Vec3 n1, n2, p1, p2;
+};
+
+// Spans of triangle t in row order.
+std::vector<KbEnds> kb_spans(const Frame& f, std::size_t t) {
+  const auto& idx = f.geometry.triangles[t];
+  const auto pv = quad::to_pixels(f.screen[t]);
+  std::vector<KbEnds> spans;
+  for (const auto& [x, y] : quad::raster(f.screen[t], f.width, f.height)) {
+    if (spans.empty() || spans.back().y != y) spans.push_back({y, x, x, {}, {}, {}, {}});
+    spans.back().x1 = x;
+  }
+  for (KbEnds& e : spans) {
+    const auto at = [&](int x, const std::vector<Vec3>& a) {
+      const quad::St st = quad::st_at(pv[0], pv[1], pv[2], {x + 0.5, e.y + 0.5});
+      return (1 - st.s - st.t) * a[idx[0]] + st.s * a[idx[1]] + st.t * a[idx[2]];
+    };
+    e.n1 = normalized(at(e.x0, f.geometry.normals));
+    e.n2 = normalized(at(e.x1, f.geometry.normals));
+    e.p1 = at(e.x0, f.geometry.positions);
+    e.p2 = at(e.x1, f.geometry.positions);
+  }
+  return spans;
+}
+
+kb::QuadParams kb_ab(double n) {
+  // Our least-squares table covers Kuijk-Blake's range n = 1..125; beyond, the closed forms.
+  const double r = std::max(1.0, std::round(n));
+  return r <= 125 ? kb_params(r, KbAbSource::least_squares) : kb::closed_form(r);
+}
+
+// One light's diffuse and specular amount at t along a span, in float, by the method's variant.
+Amounts kb_amounts(Kind kind, Vec3 n1, Vec3 n2, Vec3 l1, Vec3 l2, Vec3 h1, Vec3 h2, double t,
+                   double shininess) {
+  const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * shininess);
+  const double n4 = 4 * shininess;
+  const auto term = [&](Vec3 v1, Vec3 v2, const kb::QuadParams& ab, double n) {
+    switch (kind) {
+      case Kind::kb_exact:
+        return kb::quad(std::acos(std::clamp(kb::cos_exact(n1, n2, v1, v2, t), -1.0, 1.0)), ab);
+      case Kind::kb_decompose: {
+        const kb::Decomposition d = kb::decompose(n1, n2, v1, v2);
+        return kb::quad(d.n.theta0 + t * d.n.dtheta, ab) *
+               kb::quad(d.l.theta0 + t * d.l.dtheta, ab);
+      }
+      default: {
+        const kb::ScanlineAngles a = kb::one_vector(n1, n2, v1, v2);
+        return std::pow(std::max(a.scale, 0.0), n) * kb::quad(a.theta0 + t * a.dtheta, ab);
+      }
+    }
+  };
+  return {term(l1, l2, ab1, 1), term(h1, h2, abn, n4)};
+}
+
+// Kuijk-Blake methods in float.
+Image kb_float(const Method& m, const Frame& f) {
+  std::vector<bool> visible(f.geometry.triangles.size());
+  for (const Fragment& fr : f.fragments) visible[static_cast<std::size_t>(fr.tri)] = true;
+  Image img = blank(f);
+  std::vector<Amounts> a(f.lighting.lights.size());
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    for (const KbEnds& e : kb_spans(f, t)) {
+      for (int x = e.x0; x <= e.x1; ++x) {
+        const int o = f.owner[static_cast<std::size_t>(e.y) * f.width + x];
+        if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != static_cast<int>(t)) continue;
+        const Fragment& fr = f.fragments[static_cast<std::size_t>(o)];
+        const double u = e.x1 == e.x0 ? 0.0 : static_cast<double>(x - e.x0) / (e.x1 - e.x0);
+        for (std::size_t k = 0; k < a.size(); ++k) {
+          const Light& l = f.lighting.lights[k];
+          const Vec3 l1 = Lighting::l_at(l, e.p1), l2 = Lighting::l_at(l, e.p2);
+          const Vec3 h1 = normalized(l1 + f.lighting.v_at(e.p1));
+          const Vec3 h2 = normalized(l2 + f.lighting.v_at(e.p2));
+          a[k] = kb_amounts(m.kind, e.n1, e.n2, l1, l2, h1, h2, u, fr.shininess);
+        }
+        img.at(x, e.y) = to_rgb8(combine(fr, f.lighting.lights, a));
+      }
+    }
+  }
+  return img;
+}
+
+// The one-vector method through the Kuijk-Blake engine: per span and colour channel one program
+// whose terms are the ambient (a constant: angle 0, rate 0), and per light the diffuse and the
+// specular one-vector terms scaled by the light's and the material's colour. The channel values
+// are scaled by the output's top value, like the quadratic unit's (vertex_unit).
+Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::string_view what) {
+  const KbFormats kf = dynamic_cast<const KbModel&>(unit.model()).formats();
+  const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
+  const double top = fx::to_real(kf.out.max_raw(), kf.out);
+  const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * f.material.shininess);
+  std::vector<bool> visible(f.geometry.triangles.size());
+  for (const Fragment& fr : f.fragments) visible[static_cast<std::size_t>(fr.tri)] = true;
+  std::vector<std::int64_t> words;
+  struct Placed {
+    int tri, y, x0, x1;
+  };
+  std::vector<Placed> placed;
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    for (const KbEnds& e : kb_spans(f, t)) {
+      const int length = e.x1 - e.x0 + 1;
+      const double per_pixel = length == 1 ? 0.0 : 1.0 / (length - 1);
+      for (int ch = 0; ch < 3; ++ch) {
+        KbSpan span;
+        span.length = length;
+        span.terms.push_back({0, 0, ab1, channel(f.material.ambient, ch) * top});
+        for (const Light& l : f.lighting.lights) {
+          const Vec3 l1 = Lighting::l_at(l, e.p1), l2 = Lighting::l_at(l, e.p2);
+          const Vec3 h1 = normalized(l1 + f.lighting.v_at(e.p1));
+          const Vec3 h2 = normalized(l2 + f.lighting.v_at(e.p2));
+          const kb::ScanlineAngles d = kb::one_vector(e.n1, e.n2, l1, l2);
+          const kb::ScanlineAngles s = kb::one_vector(e.n1, e.n2, h1, h2);
+          const double lc = channel(l.colour, ch) * top;
+          span.terms.push_back({d.theta0, d.dtheta * per_pixel, ab1,
+                                lc * channel(f.material.diffuse, ch) * std::max(d.scale, 0.0)});
+          span.terms.push_back({s.theta0, s.dtheta * per_pixel, abn,
+                                lc * channel(f.material.specular, ch) *
+                                    std::pow(std::max(s.scale, 0.0), 4 * f.material.shininess)});
+        }
+        for (const auto& w : kb_program(span, so.policy, kf))
+          words.insert(words.end(), w.begin(), w.end());
+      }
+      placed.push_back({static_cast<int>(t), e.y, e.x0, e.x1});
+    }
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  std::size_t expected = 0;
+  for (const Placed& p : placed) expected += 3 * static_cast<std::size_t>(p.x1 - p.x0 + 1);
+  if (out.size() != 2 * expected) {
+    throw Error(fmt::format("{}: the engine emitted {} pixels, the spans have {}", what,
+                            out.size() / 2, expected));
+  }
+  Image img = blank(f);
+  const double full = static_cast<double>(kf.out.max_raw());
+  std::size_t at = 0;
+  for (const Placed& p : placed) {
+    const std::size_t length = static_cast<std::size_t>(p.x1 - p.x0 + 1);
+    for (std::size_t i = 0; i < length; ++i) {
+      const int x = p.x0 + static_cast<int>(i);
+      const int o = f.owner[static_cast<std::size_t>(p.y) * f.width + x];
+      if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != p.tri) continue;
+      const auto value = [&](int ch) {
+        return static_cast<double>(out[at + 2 * (static_cast<std::size_t>(ch) * length + i)]) /
+               full;
+      };
+      img.at(x, p.y) = to_rgb8({value(0), value(1), value(2)});
+    }
+    at += 2 * 3 * length;
+  }
+  return img;
+}
+
 Backend resolve(const Method& m, Backend asked) {
   if (asked == Backend::automatic) return m.info.config.empty() ? Backend::float_ref : Backend::rtl;
   if (asked != Backend::float_ref && m.info.config.empty()) {
@@ -734,6 +920,11 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
                                             : builtin_scene(o.scene, o.teapot_resolution),
                                         o.size);
 
+  if (o.scanline >= f.height) {
+    throw Error(
+        fmt::format("--scanline {} is outside the image (0..{})", o.scanline, f.height - 1));
+  }
+
   const auto render_one = [&](const Method& m, Backend b) {
     const std::string what = fmt::format("{} [{}]", m.info.name, backend_name(b));
     progress(what, 0, f.fragments.size());
@@ -741,11 +932,16 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
     MethodResult r;
     r.method = std::string(m.info.name);
     r.backend = b;
+    const bool kb =
+        m.kind == Kind::kb_exact || m.kind == Kind::kb_decompose || m.kind == Kind::kb_one_vector;
     if (b == Backend::float_ref) {
-      r.image = m.kind == Kind::pixel ? pixel_float(m, f) : vertex_float(m, f);
+      r.image = m.kind == Kind::pixel ? pixel_float(m, f)
+                : kb                  ? kb_float(m, f)
+                                      : vertex_float(m, f);
     } else {
       Unit& unit = *units.at({std::string(m.info.config), b});
       r.image = m.kind == Kind::pixel ? pixel_unit(f, unit, progress, what)
+                : kb                  ? kb_unit(f, unit, progress, what)
                                       : vertex_unit(m, f, unit, progress, what);
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -757,7 +953,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   result.scene = f.scene;
   result.mask = mask_of(f);
   result.regions = f.regions;
-  result.scanline = f.height / 2;
+  result.scanline = o.scanline < 0 ? f.height / 2 : o.scanline;
   result.reference = render_one(ref, Backend::float_ref);
   result.reference.metrics = compare(result.reference.image, result.reference.image, result.mask);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
@@ -793,13 +989,8 @@ std::string metrics_markdown(const RenderResult& r) {
   return s;
 }
 
-std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path& dir,
-                                           int scanline) {
-  const int height = r.reference.image.height();
-  const int row = scanline < 0 ? r.scanline : scanline;
-  if (row >= height) {
-    throw Error(fmt::format("--scanline {} is outside the image (0..{})", row, height - 1));
-  }
+std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path& dir) {
+  const int row = r.scanline;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(fmt::format("cannot create {}: {}", dir.string(), ec.message()));

@@ -38,6 +38,7 @@ struct RenderOptions {
   int teapot_resolution = 0;  // 0: default
   std::string reference;      // empty: "phong"
   bool no_build = false;      // never Verilate: fail when a plugin is missing
+  int scanline = -1;          // row of the scanline plot; -1: the middle
 };
 
 struct MethodResult {
@@ -68,10 +69,9 @@ using RenderProgress = std::function<void(std::string_view, std::uint64_t, std::
 
 // Writes into `dir`: <scene>_<method>.png per method, <scene>_grid.png (labelled rows),
 // <scene>_<method>_diff.png (eq. 6.2, against the reference), <scene>_scanline.png (eq. 6.3 for
-// row `scanline`, -1: the result's default), <scene>_metrics.csv and .md. Returns the paths.
+// the result's scanline), <scene>_metrics.csv and .md. Returns the paths.
 std::vector<std::filesystem::path> write_render_outputs(const RenderResult& r,
-                                                        const std::filesystem::path& dir,
-                                                        int scanline);
+                                                        const std::filesystem::path& dir);
 
 // The metrics table (Markdown) printed by the CLI and written to <scene>_metrics.md.
 [[nodiscard]] std::string metrics_markdown(const RenderResult& r);

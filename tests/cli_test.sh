@@ -22,7 +22,7 @@ expect_error() {
   local rc=$?
   [ $rc -eq 2 ] || fail "expected exit 2, got $rc from: $* (stderr: $(cat "$tmp/err"))"
   [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one stderr line, got: $(cat "$tmp/err")"
-  grep -qE "$pattern" "$tmp/err" || fail "stderr does not match '$pattern': $(cat "$tmp/err")"
+  grep -qE -- "$pattern" "$tmp/err" || fail "stderr does not match '$pattern': $(cat "$tmp/err")"
   echo "ok: $(cat "$tmp/err")"
 }
 
@@ -49,7 +49,7 @@ EOT
 
 case "$case_name" in
   help)
-    for sub in "" cosim eval build-rtl bench list; do
+    for sub in "" cosim eval build-rtl bench list render; do
       $phongsim $sub --help >"$tmp/help" 2>&1 || fail "phongsim $sub --help failed"
       grep -q -i "usage" "$tmp/help" || fail "phongsim $sub --help prints no usage"
     done
@@ -213,6 +213,55 @@ EOT
     cp "$default" "$tmp/copy.toml"
     "$phongsim" build-rtl --config "$tmp/copy.toml" >"$tmp/copy" 2>&1 || fail "$(cat "$tmp/copy")"
     grep -q "(built in)" "$tmp/copy" || fail "copy of default was not found built in: $(cat "$tmp/copy")"
+    ;;
+
+  render)
+    # The main job's command at a small size: every output file, a JSON summary, the RTL rows.
+    "$phongsim" render --scene shinyballs --size 12 --no-build --out "$tmp/r" --json "$tmp/r.json" \
+      >"$tmp/stdout" 2>"$tmp/err" || fail "render failed: $(cat "$tmp/err")"
+    for f in grid.png scanline.png metrics.csv metrics.md phong.png lyon-k2.png lyon-k2_diff.png; do
+      [ -s "$tmp/r/shinyballs_$f" ] || fail "missing shinyballs_$f"
+    done
+    grep -q '| lyon-k2 | rtl |' "$tmp/stdout" || fail "lyon-k2 not through the RTL: $(cat "$tmp/stdout")"
+    grep -q '"backend": "rtl"' "$tmp/r.json" || fail "JSON summary: $(cat "$tmp/r.json")"
+    [ "$(head -c 8 "$tmp/r/shinyballs_grid.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
+      fail "grid is not a PNG"
+    # A scene file with a mesh file next to it.
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/tri.obj"
+    printf 'mesh = "tri.obj"\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/scene.toml"
+    "$phongsim" render --scene "$tmp/scene.toml" --method gouraud,phong --backend float --size 32 \
+      --out "$tmp/s" >"$tmp/stdout" 2>&1 || fail "scene file: $(cat "$tmp/stdout")"
+    [ -s "$tmp/s/scene_gouraud.png" ] || fail "scene file: no image ($(ls "$tmp/s"))"
+    ;;
+
+  render-errors)
+    expect_error "unknown scene 'nonesuch'" "$phongsim" render --scene nonesuch --out "$tmp/o"
+    expect_error "unknown method 'bogus'" "$phongsim" render --method phong,bogus --out "$tmp/o"
+    expect_error "unknown backend 'fpga'" "$phongsim" render --backend fpga --out "$tmp/o"
+    expect_error "method 'quadratic' interpolates over triangles" \
+      "$phongsim" render --method quadratic --out "$tmp/o"
+    expect_error "method 'blinn' has no hardware unit" \
+      "$phongsim" render --method blinn --backend model --out "$tmp/o"
+    expect_error "size -3 is out of range" "$phongsim" render --size -3 --out "$tmp/o"
+    expect_error "--scanline 999 is outside the image" \
+      "$phongsim" render --size 8 --method lyon-k2 --backend float --scanline 999 --out "$tmp/o"
+    printf 'mesh = "tri.obj"\nwidht = 3\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/bad.toml"
+    expect_error "bad.toml:2: " "$phongsim" render --scene "$tmp/bad.toml" --out "$tmp/o"
+    printf 'v 0 0 0\nv 1 0 zero\nf 1 2 3\n' >"$tmp/bad.obj"
+    printf 'mesh = "bad.obj"\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/badmesh.toml"
+    expect_error "bad.obj:2: " "$phongsim" render --scene "$tmp/badmesh.toml" --out "$tmp/o"
+    [ ! -e "$tmp/o" ] || fail "an output directory was created for bad input"
+    # Unwritable output: one line, nothing written.
+    mkdir "$tmp/ro" && chmod 500 "$tmp/ro"
+    if [ "$(id -u)" != 0 ]; then
+      expect_error "cannot (write|create)" "$phongsim" render --size 8 --method lyon-k2 \
+        --backend float --out "$tmp/ro/sub"
+    fi
+    expect_error "cannot (write|create)" "$phongsim" render --size 8 --method lyon-k2 \
+      --backend float --out /proc/phongsim-out
+    expect_error "cannot write" "$phongsim" render --size 8 --method lyon-k2 --backend float \
+      --out "$tmp/o2" --json /proc/x.json
+    [ ! -e "$tmp/o2" ] || fail "outputs written although the JSON path is unwritable"
     ;;
 
   *)

@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "tests/error_of.h"
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -22,20 +24,7 @@ using phongsim::Error;
 
 constexpr const char* kOrigin = "configs/lirp/mine.toml";
 
-// The message of the Error `f` throws; fails the test when it throws nothing or something else.
-template <class F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not a phongsim::Error: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no error";
-  return "";
-}
+using phongsim::testing::ErrorOf;
 
 Config Parse(const std::string& text) { return Config::parse(text, kOrigin); }
 

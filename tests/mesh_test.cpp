@@ -4,7 +4,9 @@
 // written here, and the scene-file loader's values and one-line error messages.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include "tests/error_of.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,19 +33,7 @@ using phongsim::Vec3;
 
 constexpr double kPi = 3.14159265358979323846;
 
-template <class F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not a phongsim::Error: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no error";
-  return "";
-}
+using phongsim::testing::ErrorOf;
 
 bool StartsWith(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
