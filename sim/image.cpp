@@ -758,79 +758,361 @@ long nice_step(double raw) {
   }
 }
 
+constexpr int kPlotPad = 8;
+constexpr int kTick = 4;
+constexpr int kSwatch = 12;
+constexpr Rgb8 kGridLine{225, 225, 225};
+
+struct PlotTick {
+  int pos = 0;  // pixel column on the x axis, row on the y axis
+  std::string label;
+};
+
+// The furniture plot_curves and plot_xy share: the title centred on top, the y caption above the
+// y axis, y tick labels left of the plot area, x tick labels and the x caption below it, and the
+// legend right of it. The rows are fixed first, so that the y ticks can be chosen for the
+// area's height; the columns follow once the widest y tick label is known.
+class PlotFrame {
+ public:
+  PlotFrame(int width, int height, std::string_view title)
+      : width_(width), height_(height), title_(title) {
+    title_scale_ = text_width(title, 2) + 2 * kPlotPad <= width ? 2 : 1;
+    const int th = text_height();
+    area_.y0 = kPlotPad + (title.empty() ? 0 : text_height(title_scale_) + kPlotPad) + th + 4;
+    area_.y1 = height - 1 - kPlotPad - th - 4 - th - kTick - 2;
+    if (height > Image::kMaxSize || area_.y1 - area_.y0 < kMinArea) no_room();
+  }
+
+  // Error if the width leaves no room for the plot area.
+  void set_columns(int y_label_width, const std::vector<std::string>& legend) {
+    int legend_text = 0;
+    for (const std::string& label : legend) legend_text = std::max(legend_text, text_width(label));
+    const int legend_w = legend.empty() ? 0 : kSwatch + 4 + legend_text + kPlotPad;
+    area_.x0 = kPlotPad + y_label_width + kTick + 2;
+    area_.x1 = width_ - 1 - kPlotPad - legend_w;
+    if (width_ > Image::kMaxSize || area_.x1 - area_.x0 < kMinArea) no_room();
+  }
+
+  // Inclusive bounds; the columns only after set_columns.
+  [[nodiscard]] const Rect& area() const { return area_; }
+
+  // A white image with the title, captions, gridlines, ticks, tick labels and axes.
+  [[nodiscard]] Image draw(std::string_view x_caption, std::string_view y_caption,
+                           const std::vector<PlotTick>& x_ticks,
+                           const std::vector<PlotTick>& y_ticks) const {
+    const int th = text_height();
+    const int pw = area_.x1 - area_.x0;
+    const int ph = area_.y1 - area_.y0;
+    Image img(width_, height_, kWhite);
+    if (!title_.empty()) {
+      draw_text(img, (width_ - text_width(title_, title_scale_)) / 2, kPlotPad, title_, kBlack,
+                title_scale_);
+    }
+    draw_text(img, std::max(0, area_.x0 - text_width(y_caption) / 2), area_.y0 - th - 4, y_caption,
+              kBlack);
+    for (const PlotTick& t : y_ticks) {
+      fill_rect(img, area_.x0, t.pos, pw + 1, 1, kGridLine);
+      fill_rect(img, area_.x0 - kTick, t.pos, kTick, 1, kBlack);
+      draw_text(img, area_.x0 - kTick - 2 - text_width(t.label), t.pos - th / 2 + 1, t.label,
+                kBlack);
+    }
+    for (const PlotTick& t : x_ticks) {
+      fill_rect(img, t.pos, area_.y0, 1, ph + 1, kGridLine);
+      fill_rect(img, t.pos, area_.y1 + 1, 1, kTick, kBlack);
+      const int w = text_width(t.label);
+      draw_text(img, std::clamp(t.pos - w / 2, 0, std::max(0, width_ - w)), area_.y1 + kTick + 2,
+                t.label, kBlack);
+    }
+    draw_text(img, area_.x0 + (pw - text_width(x_caption)) / 2, area_.y1 + kTick + 2 + th + 4,
+              x_caption, kBlack);
+    // Axes last among the furniture so gridlines do not cut them.
+    fill_rect(img, area_.x0, area_.y0, 1, ph + 1, kBlack);
+    fill_rect(img, area_.x0, area_.y1, pw + 1, 1, kBlack);
+    return img;
+  }
+
+  // One entry per line right of the plot area: swatch(img, box, i) draws entry i's swatch in
+  // `box`, then its label follows in black.
+  template <typename Swatch>
+  void draw_legend(Image& img, const std::vector<std::string>& labels, Swatch&& swatch) const {
+    const int th = text_height();
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      const int ly = area_.y0 + static_cast<int>(i) * (th + 4);
+      const int lx = area_.x1 + kPlotPad;
+      swatch(img, Rect{lx, ly, lx + kSwatch - 1, ly + th - 2}, i);
+      draw_text(img, lx + kSwatch + 4, ly, labels[i], kBlack);
+    }
+  }
+
+ private:
+  static constexpr int kMinArea = 20;
+
+  [[noreturn]] void no_room() const {
+    throw Error(fmt::format("plot size {}x{} leaves no room for the plot", width_, height_));
+  }
+
+  int width_;
+  int height_;
+  std::string_view title_;
+  int title_scale_ = 1;
+  Rect area_{};
+};
+
+int widest_label(const std::vector<PlotTick>& ticks) {
+  int w = 0;
+  for (const PlotTick& t : ticks) w = std::max(w, text_width(t.label));
+  return w;
+}
+
+// ---- plot_xy's axes ----
+
+// One axis of plot_xy: its range in axis units (log10 of the value on a log axis), mapped
+// linearly onto the pixels from p0 (at lo) to p1 (at hi); p1 < p0 for the y axis.
+struct XyScale {
+  bool log = false;
+  double lo = 0;
+  double hi = 1;
+  int p0 = 0;
+  int p1 = 1;
+
+  [[nodiscard]] bool shows(double v) const { return std::isfinite(v) && (!log || v > 0); }
+  [[nodiscard]] double unit(double v) const { return log ? std::log10(v) : v; }
+  [[nodiscard]] double at(double v) const {
+    return p0 + (unit(v) - lo) / (hi - lo) * static_cast<double>(p1 - p0);
+  }
+  [[nodiscard]] int pixel(double v) const { return static_cast<int>(std::lround(at(v))); }
+};
+
+// The range of the values `scale` shows, padded by 5% each side; false if there are none.
+bool fit_range(XyScale& scale, const std::vector<double>& values, std::string_view name) {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (const double v : values) {
+    if (!scale.shows(v)) continue;
+    lo = std::min(lo, scale.unit(v));
+    hi = std::max(hi, scale.unit(v));
+  }
+  if (lo > hi) return false;
+  // Differences below double's resolution cannot be labelled: treat them as one value.
+  if (hi - lo <= 1e-9 * std::max(std::abs(lo), std::abs(hi))) {
+    const double mid = lo + (hi - lo) / 2;
+    const double half = scale.log ? 1.0 : mid == 0 ? 1.0 : std::abs(mid) / 10;
+    lo = mid - half;
+    hi = mid + half;
+  }
+  const double pad = (hi - lo) / 20;
+  scale.lo = lo - pad;
+  scale.hi = hi + pad;
+  if (!std::isfinite(scale.hi - scale.lo)) {
+    throw Error(fmt::format("plot_xy: the {} values span too wide a range to plot", name));
+  }
+  return true;
+}
+
+// The decimal exponent of v's leading digit (v != 0).
+int leading_exponent(double v) { return static_cast<int>(std::floor(std::log10(std::abs(v)))); }
+
+// v in plain notation, with digits down to 10^exp: "12000", "0.5", "0.001".
+std::string plain_label(double v, int exp) { return fmt::format("{:.{}f}", v, std::max(0, -exp)); }
+
+// v in scientific notation, with digits down to 10^exp and no trailing zeros or exponent
+// padding: "1.2e+4", "1e-3".
+std::string scientific_label(double v, int exp) {
+  if (v == 0) return "0";
+  const std::string s = fmt::format("{:.{}e}", v, std::max(0, leading_exponent(v) - exp));
+  const std::size_t e = s.find('e');
+  std::string mantissa = s.substr(0, e);
+  if (mantissa.find('.') != std::string::npos) {
+    while (mantissa.back() == '0') mantissa.pop_back();
+    if (mantissa.back() == '.') mantissa.pop_back();
+  }
+  std::string digits = s.substr(e + 2);
+  while (digits.size() > 1 && digits.front() == '0') digits.erase(digits.begin());
+  return mantissa + "e" + s[e + 1] + digits;
+}
+
+// A candidate set of ticks: values and, for each, the exponent of the last digit its label
+// needs.
+struct TickSet {
+  std::vector<double> values;
+  std::vector<int> exps;
+};
+
+constexpr int kMaxTicks = 15;
+
+// Multiples of 1, 2 and 5 times powers of ten in [lo, hi], finest first.
+void add_linear_ticks(double lo, double hi, std::vector<TickSet>& out) {
+  if (!std::isfinite(hi - lo) || !(hi > lo)) return;
+  const int top = leading_exponent(hi - lo);
+  for (int e = top - 2; e <= top + 1; ++e) {
+    for (const int m : {1, 2, 5}) {
+      const double step = m * std::pow(10.0, e);
+      const double k0 = std::ceil(lo / step - 1e-9);
+      const double k1 = std::floor(hi / step + 1e-9);
+      if (!(k1 >= k0 && k1 - k0 < kMaxTicks) || std::abs(k0) > 1e15 || std::abs(k1) > 1e15) {
+        continue;
+      }
+      TickSet set;
+      for (int i = 0; i <= static_cast<int>(k1 - k0); ++i) {
+        set.values.push_back((k0 + i) * step);
+        set.exps.push_back(e);
+      }
+      out.push_back(std::move(set));
+    }
+  }
+}
+
+// Log axis (lo, hi in decades): every d-th decade for d = 1, 2, 5, 10, ..., then 1-2-5 in
+// every decade, then plain steps for ranges too short for either.
+std::vector<TickSet> log_tick_sets(double lo, double hi) {
+  std::vector<TickSet> out;
+  // Decades whose powers of ten are finite, normal doubles.
+  const int first = std::max(-307, static_cast<int>(std::ceil(lo - 1e-9)));
+  const int last = std::min(308, static_cast<int>(std::floor(hi + 1e-9)));
+  for (int base = 1; base <= 100; base *= 10) {
+    for (const int m : {1, 2, 5}) {
+      const int d = m * base;
+      TickSet set;
+      for (int k = first; k <= last; ++k) {
+        if (k % d != 0) continue;
+        set.values.push_back(std::pow(10.0, k));
+        set.exps.push_back(k);
+      }
+      if (!set.values.empty() && set.values.size() <= kMaxTicks) out.push_back(std::move(set));
+    }
+  }
+  if (hi - lo < kMaxTicks / 3.0) {
+    TickSet set;
+    for (int k = first - 1; k <= last; ++k) {
+      for (const int m : {1, 2, 5}) {
+        const double t = k + std::log10(static_cast<double>(m));
+        if (t < lo - 1e-9 || t > hi + 1e-9 || k < -307 || k > 307) continue;
+        set.values.push_back(m * std::pow(10.0, k));
+        set.exps.push_back(k);
+      }
+    }
+    if (!set.values.empty()) out.push_back(std::move(set));
+  }
+  if (hi - lo < 1) add_linear_ticks(std::pow(10.0, lo), std::pow(10.0, hi), out);
+  return out;
+}
+
+// Labels for a tick set: plain unless that is longer than 6 characters and than scientific.
+std::vector<std::string> tick_labels(const TickSet& set) {
+  std::vector<std::string> plain;
+  std::vector<std::string> sci;
+  std::size_t plain_len = 0;
+  std::size_t sci_len = 0;
+  for (std::size_t i = 0; i < set.values.size(); ++i) {
+    plain.push_back(plain_label(set.values[i], set.exps[i]));
+    sci.push_back(scientific_label(set.values[i], set.exps[i]));
+    plain_len = std::max(plain_len, plain.back().size());
+    sci_len = std::max(sci_len, sci.back().size());
+  }
+  return plain_len <= 6 || plain_len <= sci_len ? plain : sci;
+}
+
+// The first set (in the given order of preference) whose labels have room, preferring sets of
+// at least three ticks, then two, then one; none if nothing fits. x labels need their half
+// widths plus a gap between neighbouring centres, y labels a minimum row spacing.
+std::vector<PlotTick> choose_ticks(const std::vector<TickSet>& sets, const XyScale& scale,
+                                   bool horizontal) {
+  std::vector<std::vector<PlotTick>> fitting;
+  for (const TickSet& set : sets) {
+    const std::vector<std::string> labels = tick_labels(set);
+    std::vector<PlotTick> ticks;
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      ticks.push_back({scale.pixel(set.values[i]), labels[i]});
+    }
+    std::sort(ticks.begin(), ticks.end(),
+              [](const PlotTick& a, const PlotTick& b) { return a.pos < b.pos; });
+    bool fits = true;
+    for (std::size_t i = 1; i < ticks.size() && fits; ++i) {
+      const int gap = ticks[i].pos - ticks[i - 1].pos;
+      const int need =
+          horizontal
+              ? std::max(40,
+                         (text_width(ticks[i].label) + text_width(ticks[i - 1].label) + 1) / 2 + 12)
+              : 3 * text_height() + 6;
+      fits = gap >= need;
+    }
+    if (fits) fitting.push_back(std::move(ticks));
+  }
+  for (const std::size_t least : {3u, 2u, 1u}) {
+    for (auto& ticks : fitting) {
+      if (ticks.size() >= least) return std::move(ticks);
+    }
+  }
+  return {};
+}
+
+std::vector<PlotTick> xy_ticks(const XyScale& scale, bool horizontal) {
+  std::vector<TickSet> sets;
+  if (scale.log) {
+    sets = log_tick_sets(scale.lo, scale.hi);
+  } else {
+    add_linear_ticks(scale.lo, scale.hi, sets);
+  }
+  return choose_ticks(sets, scale, horizontal);
+}
+
+// Filled 5x5 squares for even series, crosses 7 high (two pixels wide) for odd ones, centred
+// on (x, y).
+void draw_marker(Image& img, int x, int y, std::size_t series, Rgb8 colour, const Rect& clip) {
+  const auto set = [&](int px, int py) {
+    if (px >= clip.x0 && px <= clip.x1 && py >= clip.y0 && py <= clip.y1) img.at(px, py) = colour;
+  };
+  for (int a = -3; a <= 3; ++a) {
+    if (series % 2 == 0) {
+      for (int b = -2; b <= 2; ++b) {
+        if (std::abs(a) <= 2) set(x + a, y + b);
+      }
+    } else {
+      for (const int dx : {0, 1}) {
+        set(x + a + dx, y + a);
+        set(x + a + dx, y - a);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Image plot_curves(const std::vector<Curve>& curves, std::string_view title, int width, int height) {
-  constexpr int kPad = 8;
-  constexpr int kTick = 4;
-  constexpr int kSwatch = 12;
-  constexpr Rgb8 kGridLine{225, 225, 225};
-
   std::size_t n = 0;
-  int legend_text = 0;
+  std::vector<std::string> labels;
   for (const Curve& c : curves) {
     n = std::max(n, c.values.size());
-    legend_text = std::max(legend_text, text_width(c.label));
+    labels.push_back(c.label);
   }
-  const int title_scale = text_width(title, 2) + 2 * kPad <= width ? 2 : 1;
-  const int th = text_height();
-  const std::string x_caption = "pixel x";
-  const std::string y_caption = "I(x, y)";
+  PlotFrame frame(width, height, title);
+  const int y1 = frame.area().y1;
+  const int ph = y1 - frame.area().y0;
+  const auto to_py = [&](double v) {
+    return y1 - static_cast<int>(std::lround(std::clamp(v, 0.0, 1.0) * ph));
+  };
+  // y: gridlines and labels every 0.2.
+  std::vector<PlotTick> y_ticks;
+  for (int i = 0; i <= 5; ++i) {
+    y_ticks.push_back({to_py(i / 5.0), fmt::format("{:g}", i / 5.0)});
+  }
+  frame.set_columns(widest_label(y_ticks), labels);
 
-  // Plot area (inclusive bounds): tick labels left and below, legend right, title above.
-  const int y_label_w = text_width("0.8");
-  const int legend_w = curves.empty() ? 0 : kSwatch + 4 + legend_text + kPad;
-  Rect area{};
-  area.x0 = kPad + y_label_w + kTick + 2;
-  area.x1 = width - 1 - kPad - legend_w;
-  area.y0 = kPad + (title.empty() ? 0 : text_height(title_scale) + kPad) + th + 4;
-  area.y1 = height - 1 - kPad - th - 4 - th - kTick - 2;
-  if (width > Image::kMaxSize || height > Image::kMaxSize || area.x1 - area.x0 < 20 ||
-      area.y1 - area.y0 < 20) {
-    throw Error(fmt::format("plot size {}x{} leaves no room for the plot", width, height));
-  }
+  const Rect& area = frame.area();
   const int pw = area.x1 - area.x0;
-  const int ph = area.y1 - area.y0;
   const double x_max = n > 1 ? static_cast<double>(n - 1) : 1.0;
   const auto to_px = [&](double x) {
     return area.x0 + static_cast<int>(std::lround(x / x_max * pw));
   };
-  const auto to_py = [&](double v) {
-    return area.y1 - static_cast<int>(std::lround(std::clamp(v, 0.0, 1.0) * ph));
-  };
-
-  Image img(width, height, kWhite);
-  if (!title.empty()) {
-    draw_text(img, (width - text_width(title, title_scale)) / 2, kPad, title, kBlack, title_scale);
-  }
-  draw_text(img, std::max(0, area.x0 - text_width(y_caption) / 2), area.y0 - th - 4, y_caption,
-            kBlack);
-
-  // y: gridlines and labels every 0.2.
-  for (int i = 0; i <= 5; ++i) {
-    const double v = i / 5.0;
-    const int py = to_py(v);
-    fill_rect(img, area.x0, py, pw + 1, 1, kGridLine);
-    fill_rect(img, area.x0 - kTick, py, kTick, 1, kBlack);
-    const std::string label = fmt::format("{:g}", v);
-    draw_text(img, area.x0 - kTick - 2 - text_width(label), py - th / 2 + 1, label, kBlack);
-  }
   // x: a 1-2-5 step wide enough that neighbouring labels do not touch.
   const int widest = text_width(fmt::format("{}", static_cast<long>(x_max)));
   long step = nice_step(x_max / 10.0);
   while (static_cast<double>(step) / x_max * pw < widest + 8) step = nice_step(step + 1.0);
+  std::vector<PlotTick> x_ticks;
   for (long x = 0; static_cast<double>(x) <= x_max; x += step) {
-    const int px = to_px(static_cast<double>(x));
-    fill_rect(img, px, area.y0, 1, ph + 1, kGridLine);
-    fill_rect(img, px, area.y1 + 1, 1, kTick, kBlack);
-    const std::string label = fmt::format("{}", x);
-    draw_text(img, px - text_width(label) / 2, area.y1 + kTick + 2, label, kBlack);
+    x_ticks.push_back({to_px(static_cast<double>(x)), fmt::format("{}", x)});
   }
-  draw_text(img, area.x0 + (pw - text_width(x_caption)) / 2, area.y1 + kTick + 2 + th + 4,
-            x_caption, kBlack);
-  // Axes last among the furniture so gridlines do not cut them.
-  fill_rect(img, area.x0, area.y0, 1, ph + 1, kBlack);
-  fill_rect(img, area.x0, area.y1, pw + 1, 1, kBlack);
+  Image img = frame.draw("pixel x", "I(x, y)", x_ticks, y_ticks);
 
   for (std::size_t i = 0; i < curves.size(); ++i) {
     const Rgb8 colour = curve_colour(i);
@@ -854,12 +1136,78 @@ Image plot_curves(const std::vector<Curve>& curves, std::string_view title, int 
       prev_x = px;
       prev_y = py;
     }
-    // Legend: swatch and label, one entry per line to the right of the plot.
-    const int ly = area.y0 + static_cast<int>(i) * (th + 4);
-    const int lx = area.x1 + kPad;
-    fill_rect(img, lx, ly, kSwatch, th - 1, colour);
-    draw_text(img, lx + kSwatch + 4, ly, curves[i].label, kBlack);
   }
+  frame.draw_legend(img, labels, [](Image& out, const Rect& box, std::size_t i) {
+    fill_rect(out, box.x0, box.y0, box.x1 - box.x0 + 1, box.y1 - box.y0 + 1, curve_colour(i));
+  });
+  return img;
+}
+
+Image plot_xy(const std::vector<XySeries>& series, const XyAxes& axes, std::string_view title,
+              int width, int height) {
+  XyScale xs{.log = axes.log_x};
+  XyScale ys{.log = axes.log_y};
+  std::vector<double> xv;
+  std::vector<double> yv;
+  std::vector<std::string> labels;
+  for (const XySeries& s : series) {
+    labels.push_back(s.label);
+    for (const auto& [x, y] : s.points) {
+      if (xs.shows(x) && ys.shows(y)) {
+        xv.push_back(x);
+        yv.push_back(y);
+      }
+    }
+  }
+  if (!fit_range(xs, xv, "x") || !fit_range(ys, yv, "y")) {
+    throw Error(fmt::format("plot_xy: no point to plot (finite{})",
+                            axes.log_x || axes.log_y ? ", and positive on a log axis" : ""));
+  }
+
+  PlotFrame frame(width, height, title);
+  ys.p0 = frame.area().y1;
+  ys.p1 = frame.area().y0;
+  const std::vector<PlotTick> y_ticks = xy_ticks(ys, false);
+  frame.set_columns(widest_label(y_ticks), labels);
+  const Rect& area = frame.area();
+  xs.p0 = area.x0;
+  xs.p1 = area.x1;
+  const std::vector<PlotTick> x_ticks = xy_ticks(xs, true);
+  Image img = frame.draw(axes.x_label, axes.y_label, x_ticks, y_ticks);
+
+  // All lines first, so that no line hides a marker.
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    if (!series[i].lines) continue;
+    bool have_prev = false;
+    int prev_x = 0;
+    int prev_y = 0;
+    for (const auto& [x, y] : series[i].points) {
+      if (!xs.shows(x) || !ys.shows(y)) {
+        have_prev = false;
+        continue;
+      }
+      const int px = xs.pixel(x);
+      const int py = ys.pixel(y);
+      if (have_prev) plot_line(img, prev_x, prev_y, px, py, curve_colour(i), area);
+      have_prev = true;
+      prev_x = px;
+      prev_y = py;
+    }
+  }
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    for (const auto& [x, y] : series[i].points) {
+      if (xs.shows(x) && ys.shows(y)) {
+        draw_marker(img, xs.pixel(x), ys.pixel(y), i, curve_colour(i), area);
+      }
+    }
+  }
+  frame.draw_legend(img, labels, [&](Image& out, const Rect& box, std::size_t i) {
+    const int cx = (box.x0 + box.x1) / 2;
+    const int cy = (box.y0 + box.y1) / 2;
+    const Rect whole{0, 0, out.width() - 1, out.height() - 1};
+    if (series[i].lines) plot_line(out, box.x0, cy, box.x1 - 1, cy, curve_colour(i), whole);
+    draw_marker(out, cx, cy, i, curve_colour(i), whole);
+  });
   return img;
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace phongsim {
@@ -102,7 +103,8 @@ struct Curve {
   std::vector<double> values;
 };
 
-// The colour plot_curves gives curve i (a fixed palette of 10 distinct colours, repeating).
+// The colour plot_curves gives curve i and plot_xy series i (a fixed palette of 10 distinct
+// colours, repeating).
 [[nodiscard]] Rgb8 curve_colour(std::size_t i);
 
 // A line plot of scanline illumination curves (eq. 6.3): x axis pixel column 0..n-1 (n the
@@ -111,5 +113,28 @@ struct Curve {
 // size leaves no room for the plot.
 Image plot_curves(const std::vector<Curve>& curves, std::string_view title, int width = 800,
                   int height = 400);
+
+struct XySeries {
+  std::string label;
+  std::vector<std::pair<double, double>> points;  // (x, y)
+  bool lines = true;  // join the points with lines in the given order (a skipped point breaks it)
+};
+
+struct XyAxes {
+  std::string x_label, y_label;       // captions below the x axis and above the y axis
+  bool log_x = false, log_y = false;  // log10 axes: non-positive values are skipped on them
+};
+
+// A scatter/line plot, e.g. of Pareto fronts (error against area). Each axis spans its data
+// (finite values; positive ones on a log axis), padded by 5% on both sides (a single value gets
+// +-10% of itself, or +-1 for zero; a decade either way on a log axis). Ticks at 1-2-5 steps (on
+// log axes decades, or 1-2-5 within decades, or plain steps when the range is under a decade),
+// as dense as their labels allow without crowding; labels are short ("12000", "0.5", "1e-3",
+// "1.2e+7"). Points whose x or y cannot be shown are skipped. Series i is drawn in
+// curve_colour(i) as markers (filled squares for even i, crosses for odd i), joined by 2-pixel
+// lines when `lines`; a legend to the right, the title above, same frame as plot_curves. Error
+// if no series has a point that can be shown, or the size leaves no room for the plot.
+Image plot_xy(const std::vector<XySeries>& series, const XyAxes& axes, std::string_view title,
+              int width = 800, int height = 500);
 
 }  // namespace phongsim

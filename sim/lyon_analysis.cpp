@@ -55,8 +55,8 @@ std::vector<LyonShapeRow> lyon_shape_table() {
   return rows;
 }
 
-LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples,
-                                  std::uint64_t seed) {
+LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples, std::uint64_t seed,
+                                  bool exact_inputs) {
   const LyonFormats& f = model.formats();
   const lyon::DatapathParams params{f.halfway, f.norm, f.h_norm, f.k};
   const double spec_lsb = std::ldexp(1.0, -f.spec.frac_bits);
@@ -67,17 +67,21 @@ LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples,
   double diff_sum = 0;
   for (std::uint64_t i = 0; i < samples; ++i) {
     Rng rng(seed, kStimulusStream, i);
-    const auto raw = quantize_lyon_pixel(random_lyon_pixel(rng, f), f);
+    const LyonPixel pixel = random_lyon_pixel(rng, f);
+    const auto raw = quantize_lyon_pixel(pixel, f);
     const LyonStages s =
         model.stages({raw[0], raw[1], raw[2]}, {raw[3], raw[4], raw[5]}, raw[6],
                      {raw[7], raw[8], raw[9]}, {raw[10], raw[11], raw[12]}, raw[13]);
     // The float datapath sees exactly the quantized inputs: the error is the unit's own.
     const std::span<const std::int64_t> in(raw);
     const double shin = fx::to_real(raw[13], f.shin);
-    const lyon::DatapathOut ref = lyon::datapath(
-        real_vec(in.subspan(0, 3), f.vec), real_vec(in.subspan(3, 3), f.vec),
-        fx::to_real(raw[6], f.a), real_vec(in.subspan(7, 3), f.vec),
-        real_vec(in.subspan(10, 3), f.vec), f.arrangement == 8 ? shin * shin : shin, params);
+    const double n = f.arrangement == 8 ? shin * shin : shin;
+    const lyon::DatapathOut ref =
+        exact_inputs
+            ? lyon::datapath(pixel.n0, pixel.n1, pixel.a, pixel.v, pixel.l, n, params)
+            : lyon::datapath(real_vec(in.subspan(0, 3), f.vec), real_vec(in.subspan(3, 3), f.vec),
+                             fx::to_real(raw[6], f.a), real_vec(in.subspan(7, 3), f.vec),
+                             real_vec(in.subspan(10, 3), f.vec), n, params);
     const double spec_err = std::abs(s.spec.real() - ref.spec) / spec_lsb;
     const double diff_err = std::abs(s.diff.real() - ref.diff) / diff_lsb;
     e.spec_max = std::max(e.spec_max, spec_err);

@@ -39,8 +39,10 @@ struct LyonOutputError {
   double diff_mean = 0;
   std::uint64_t spec_nonzero = 0;  // pixels with a visible highlight in the float reference
 };
+// exact_inputs: the reference sees the pixel before quantization instead, so the error also
+// counts the input formats (what width exploration needs).
 [[nodiscard]] LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples,
-                                                std::uint64_t seed);
+                                                std::uint64_t seed, bool exact_inputs = false);
 
 // Every stage's format and width for the configuration (one pixel of zeros traces them).
 [[nodiscard]] std::string lyon_stage_formats(const LyonModel& model);

@@ -31,6 +31,7 @@
 #include "sim/quad_stimulus.h"
 #include "sim/render.h"
 #include "sim/rtl_library.h"
+#include "sim/sweep.h"
 
 namespace {
 
@@ -231,6 +232,112 @@ int cmd_render(RenderCli c) {
     json->commit();
   }
   return 0;
+}
+
+// ---- sweep ----
+
+std::function<void(std::size_t, std::size_t)> sweep_progress() {
+  if (isatty(STDERR_FILENO) == 0) return [](std::size_t, std::size_t) {};
+  return [](std::size_t done, std::size_t total) {
+    fmt::print(stderr, "\r\033[K  sweep: point {}/{}", done, total);
+    if (done == total) fmt::print(stderr, "\r\033[K");
+  };
+}
+
+int cmd_sweep(const std::string& action, const std::string& file, const std::string& out,
+              const std::string& sweep_file, std::size_t index, const std::string& write,
+              bool verify) {
+  if (action == "point") {  // one job of a plan: evaluate a point's configuration
+    const SweepSpec spec = load_sweep(sweep_file);
+    OutputFile check(out);  // unwritable: fail before the work
+    const PointResult r = evaluate_point(spec, file, index, stderr);
+    write_point_result(r, out);
+    fmt::print("point {}: max error {:.4g} LSB{}\n", index, r.error.max_lsb,
+               r.synthesized ? fmt::format(", {} cells", r.synth.cells) : "");
+    return 0;
+  }
+  if (action == "search") {
+    const SearchSpec spec = load_search(file);
+    const SearchResult r =
+        search_min_width(spec, [](std::string_view s) { fmt::print("  {}\n", s); });
+    const Config base = Config::load(spec.base);
+    const fs::path dest = write.empty() ? fs::path(PHONGSIM_SOURCE_DIR) / "configs" /
+                                              base.pipeline() / (spec.name + ".toml")
+                                        : fs::path(write);
+    fmt::print(
+        "found after {} evaluations: {} fraction bits fewer, max error {:.4g} LSB "
+        "(budget {})\n",
+        r.evaluations, r.bits_saved, r.error.max_lsb, spec.max_lsb);
+    for (const auto& [sig, f] : r.formats) fmt::print("  {} = {}\n", sig, f);
+    OutputFile found(dest);  // unwritable: fail before Verilating
+    std::fputs(r.toml.c_str(), found.get());
+    if (verify) {
+      // Verilate the found point and co-simulate it before it lands at `dest`.
+      const fs::path dir = fs::temp_directory_path() / fmt::format("phongsim-search-{}", getpid());
+      fs::create_directories(dir);
+      const std::shared_ptr<void> cleanup(nullptr, [dir](void*) {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+      });
+      const fs::path candidate = dir / dest.filename();
+      {
+        OutputFile c(candidate);
+        std::fputs(r.toml.c_str(), c.get());
+        c.commit();
+      }
+      const Config cfg = Config::load(candidate);
+      const auto model = make_model(find_pipeline(cfg.pipeline()), cfg);
+      const RtlPlugin plugin = locate_rtl(cfg, RtlBuild::if_missing, stderr);
+      const auto library = RtlLibrary::open(plugin.path, plugin.gflags);
+      CosimOptions o;
+      o.random_vectors = spec.verify_vectors;
+      o.source = StallPattern::parse("random:0.2");
+      o.sink = StallPattern::parse("random:0.5");
+      const CosimReport rep = cosim(
+          find_pipeline(cfg.pipeline()), cfg, *model, [&]() { return library->create(*model); }, o);
+      if (!rep.passed) {
+        fmt::print("{}", rep.failure);
+        throw Error(fmt::format("the found configuration fails co-simulation; not written to {}",
+                                dest.string()));
+      }
+      fmt::print("verified: {}\n", rep.summary());
+    }
+    found.commit();
+    fmt::print("wrote {}\n", dest.string());
+    return 0;
+  }
+  const SweepSpec spec = load_sweep(file);
+  if (action == "plan") {
+    const auto points = plan_sweep(spec, out);
+    fmt::print(
+        "{} points: {}/points/*.toml; run {}/jobs.txt (e.g. parallel < jobs.txt, or a "
+        "Slurm array: scripts/slurm-sweep.sh), or make -j -C {}; then phongsim sweep "
+        "merge {} --out {}\n",
+        points.size(), out, out, out, file, out);
+    return 0;
+  }
+  if (action == "merge") {
+    const auto results = merge_sweep(spec, out);
+    fmt::print("{} points merged: {}/sweep.csv, {}/summary.md{}\n", results.size(), out, out,
+               spec.synth.generic || spec.synth.ice40 ? fmt::format(", {}/pareto.png", out) : "");
+    return 0;
+  }
+  if (action == "run") {
+    const auto results = run_sweep(spec, out, sweep_progress(), stderr);
+    std::string summary;
+    {
+      std::FILE* f = std::fopen((fs::path(out) / "summary.md").c_str(), "r");
+      if (f != nullptr) {
+        char buf[4096];
+        std::size_t n = 0;
+        while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) summary.append(buf, n);
+        std::fclose(f);
+      }
+    }
+    fmt::print("{}\n{} points: {}/sweep.csv, {}/summary.md\n", summary, results.size(), out, out);
+    return 0;
+  }
+  throw Error(fmt::format("unknown sweep action '{}' (run, plan, point, merge, search)", action));
 }
 
 // `phongsim bench render`: lyon-k2 on shinyballs through each backend, object pixels per second
@@ -563,6 +670,37 @@ int main(int argc, char** argv) {
   bench_cmd->callback(
       [&]() { action = [&]() { return cmd_bench(bench_target, bench_vectors, bench_radius); }; });
 
+  // sweep
+  std::string sweep_action, sweep_file, sweep_out = "sweep-out", sweep_of, sweep_write;
+  std::size_t sweep_index = 0;
+  bool sweep_verify = true;
+  auto* sweep_cmd = app.add_subcommand(
+      "sweep",
+      "Bit-width exploration: run|plan|point|merge a sweep file, or search for the "
+      "narrowest configuration within an error budget (docs/exploration.md)");
+  sweep_cmd->add_option("action", sweep_action, "run, plan, point, merge or search")->required();
+  sweep_cmd
+      ->add_option("file", sweep_file,
+                   "the sweep file (point: the point's configuration; search: the search "
+                   "file)")
+      ->required();
+  sweep_cmd->add_option("--out", sweep_out, "output directory (point: the result JSON)")
+      ->capture_default_str();
+  sweep_cmd->add_option("--sweep", sweep_of, "point: the sweep file it belongs to");
+  sweep_cmd->add_option("--index", sweep_index, "point: its index");
+  sweep_cmd->add_option("--write", sweep_write,
+                        "search: where the found configuration goes (default "
+                        "configs/<pipeline>/<search name>.toml)");
+  sweep_cmd->add_flag("!--no-verify", sweep_verify,
+                      "search: skip Verilating and co-simulating the found configuration");
+  sweep_cmd->callback([&]() {
+    action = [&]() {
+      if (sweep_action == "point" && sweep_of.empty()) throw Error("sweep point needs --sweep");
+      return cmd_sweep(sweep_action, sweep_file, sweep_out, sweep_of, sweep_index, sweep_write,
+                       sweep_verify);
+    };
+  });
+
   // render
   RenderCli render_cli;
   auto* render_cmd = app.add_subcommand(
@@ -592,6 +730,9 @@ int main(int argc, char** argv) {
                          "float)");
   render_cmd->add_option("--scanline", render_cli.options.scanline,
                          "row of the scanline illumination plot (default: the middle)");
+  render_cmd->add_option("--unit-config", render_cli.options.unit_config,
+                         "a configuration file replacing the built-in one of every unit method "
+                         "of its pipeline");
   render_cmd->add_option("--out", render_cli.out_dir, "output directory")->capture_default_str();
   render_cmd->add_option("--json", render_cli.json, "write a JSON summary here");
   render_cmd->add_flag("--no-build", render_cli.options.no_build,

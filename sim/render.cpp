@@ -175,8 +175,8 @@ const std::vector<std::string> kMeshMethods{"flat",  "gouraud", "gouraud4", "qua
 
 class Unit {
  public:
-  Unit(std::string_view config, Backend backend, bool no_build)
-      : cfg_(Config::load((fs::path(PHONGSIM_SOURCE_DIR) / "configs" / config).string() + ".toml")),
+  Unit(const fs::path& config, Backend backend, bool no_build)
+      : cfg_(Config::load(config)),
         model_(make_model(find_pipeline(cfg_.pipeline()), cfg_)),
         backend_(backend) {
     if (backend == Backend::rtl) {
@@ -905,13 +905,23 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   if (analytic && ref.info.mesh_only) {
     throw Error(fmt::format("reference '{}' needs a mesh scene", ref_name));
   }
-  // Units (loading them finds or builds the plugins before rendering starts).
+  // Units (loading them finds or builds the plugins before rendering starts). A method's unit
+  // is its built-in configuration, or options.unit_config when that is of the same pipeline.
+  std::string override_pipeline;
+  if (!o.unit_config.empty()) override_pipeline = Config::load(o.unit_config).pipeline();
+  const auto unit_path = [&](const Method& m) {
+    const fs::path built_in =
+        fs::path(PHONGSIM_SOURCE_DIR) / "configs" / (std::string(m.info.config) + ".toml");
+    const bool replace = !override_pipeline.empty() &&
+                         fs::path(std::string(m.info.config)).parent_path() == override_pipeline;
+    return (replace ? fs::path(o.unit_config) : built_in).string();
+  };
   std::map<std::pair<std::string, Backend>, std::unique_ptr<Unit>> units;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     if (backends[i] == Backend::float_ref) continue;
-    auto key = std::make_pair(std::string(chosen[i]->info.config), backends[i]);
+    auto key = std::make_pair(unit_path(*chosen[i]), backends[i]);
     if (!units.contains(key)) {
-      units[key] = std::make_unique<Unit>(chosen[i]->info.config, backends[i], o.no_build);
+      units[key] = std::make_unique<Unit>(key.first, backends[i], o.no_build);
     }
   }
   const Frame f = analytic ? shinyballs(o.size == 0 ? 64 : o.size)
@@ -939,7 +949,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
                 : kb                  ? kb_float(m, f)
                                       : vertex_float(m, f);
     } else {
-      Unit& unit = *units.at({std::string(m.info.config), b});
+      Unit& unit = *units.at({unit_path(m), b});
       r.image = m.kind == Kind::pixel ? pixel_unit(f, unit, progress, what)
                 : kb                  ? kb_unit(f, unit, progress, what)
                                       : vertex_unit(m, f, unit, progress, what);

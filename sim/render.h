@@ -39,6 +39,9 @@ struct RenderOptions {
   std::string reference;      // empty: "phong"
   bool no_build = false;      // never Verilate: fail when a plugin is missing
   int scanline = -1;          // row of the scanline plot; -1: the middle
+  // A configuration file that replaces the built-in one of every unit method of its pipeline
+  // (width exploration renders scenes through candidate configurations).
+  std::string unit_config;
 };
 
 struct MethodResult {

@@ -49,7 +49,7 @@ EOT
 
 case "$case_name" in
   help)
-    for sub in "" cosim eval build-rtl bench list render; do
+    for sub in "" cosim eval build-rtl bench list render sweep; do
       $phongsim $sub --help >"$tmp/help" 2>&1 || fail "phongsim $sub --help failed"
       grep -q -i "usage" "$tmp/help" || fail "phongsim $sub --help prints no usage"
     done
@@ -262,6 +262,53 @@ EOT
     expect_error "cannot write" "$phongsim" render --size 8 --method lyon-k2 --backend float \
       --out "$tmp/o2" --json /proc/x.json
     [ ! -e "$tmp/o2" ] || fail "outputs written although the JSON path is unwritable"
+    ;;
+
+  sweep)
+    # A small sweep end to end (model errors, generic and iCE40 synthesis, Pareto plot), then the
+    # same as planned jobs run by make and merged: identical tables.
+    "$phongsim" sweep run "$src/sweeps/lirp-small.toml" --out "$tmp/run" >"$tmp/stdout" 2>&1 ||
+      fail "sweep run: $(cat "$tmp/stdout")"
+    [ "$(wc -l <"$tmp/run/sweep.csv")" -eq 5 ] || fail "sweep.csv: $(cat "$tmp/run/sweep.csv")"
+    [ -s "$tmp/run/pareto.png" ] || fail "no pareto.png"
+    grep -q "| yes |" "$tmp/run/summary.md" || fail "no Pareto point marked: $(cat "$tmp/run/summary.md")"
+    awk -F, 'NR > 1 && ($11 <= 0 || $12 <= 0 || $13 <= 0) {exit 1}' "$tmp/run/sweep.csv" ||
+      fail "missing synthesis numbers: $(cat "$tmp/run/sweep.csv")"
+    "$phongsim" sweep plan "$src/sweeps/lirp-small.toml" --out "$tmp/plan" >"$tmp/stdout" 2>&1 ||
+      fail "sweep plan: $(cat "$tmp/stdout")"
+    [ "$(wc -l <"$tmp/plan/jobs.txt")" -eq 4 ] || fail "jobs.txt: $(cat "$tmp/plan/jobs.txt")"
+    make -s -j2 -C "$tmp/plan" >"$tmp/make" 2>&1 || fail "make: $(cat "$tmp/make")"
+    cmp "$tmp/run/sweep.csv" "$tmp/plan/sweep.csv" || fail "planned sweep differs from run"
+    ;;
+
+  sweep-errors)
+    base="$src/configs/lirp/default.toml"
+    printf 'base = "%s"\n[axes]\n"format.bogus" = ["S1.8"]\n' "$base" >"$tmp/s1.toml"
+    expect_error "point 0 .*has no \[format\] bogus" "$phongsim" sweep run "$tmp/s1.toml" --out "$tmp/o"
+    printf 'base = "%s"\n[axes]\n"format.p" = { frac = [9, 3] }\n' "$base" >"$tmp/s2.toml"
+    expect_error "s2.toml:3: axis 'format.p' is empty" "$phongsim" sweep run "$tmp/s2.toml" --out "$tmp/o"
+    printf 'base = "%s"\n[axes]\n"format.p" = ["S30.40"]\n' "$base" >"$tmp/s3.toml"
+    expect_error "point 0 .*(63|bits|overflow|wide)" "$phongsim" sweep run "$tmp/s3.toml" --out "$tmp/o"
+    printf 'base = "%s"\nsamples = 3\n' "$base" >"$tmp/s4.toml"
+    expect_error "s4.toml:2: unknown key 'samples'" "$phongsim" sweep run "$tmp/s4.toml" --out "$tmp/o"
+    printf 'base = "nonesuch.toml"\n' >"$tmp/s5.toml"
+    expect_error "nonesuch.toml does not exist" "$phongsim" sweep plan "$tmp/s5.toml" --out "$tmp/o"
+    [ ! -e "$tmp/o" ] || fail "output written for a bad sweep file"
+    printf 'base = "%s"\nsignals = ["q"]\n' "$base" >"$tmp/search.toml"
+    expect_error "signal 'q' is not a \[format\] key" "$phongsim" sweep search "$tmp/search.toml" \
+      --write "$tmp/found.toml"
+    [ ! -e "$tmp/found.toml" ] || fail "a configuration was written for a bad search file"
+    ;;
+
+  sweep-search)
+    # The search finds a configuration, Verilates and co-simulates it (10^6 vectors), writes it.
+    "$phongsim" sweep search "$src/sweeps/lirp-search.toml" --write "$tmp/found.toml" \
+      >"$tmp/stdout" 2>&1 || fail "search: $(cat "$tmp/stdout")"
+    grep -q "^verified: PASS lirp/found: 1001859 vectors" "$tmp/stdout" ||
+      fail "not verified: $(cat "$tmp/stdout")"
+    grep -q 'p = .S1.8.' "$tmp/found.toml" || fail "found: $(cat "$tmp/found.toml")"
+    "$phongsim" cosim --config "$tmp/found.toml" --vectors 1000 >/dev/null 2>&1 ||
+      fail "the written configuration does not load"
     ;;
 
   *)

@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <string>
 #include <string_view>
@@ -740,6 +742,302 @@ TEST(Plot, OddInputsAndTooSmall) {
   EXPECT_EQ(plot_curves({}, "empty").width(), 800);
   EXPECT_THROW((void)plot_curves(odd, "x", 40, 30), Error);
   EXPECT_THROW((void)plot_curves(odd, "x", 800, -5), Error);
+}
+
+// ---- XY plot ----
+
+// 8-connected blobs of exactly `colour`, left to right.
+std::vector<Ink> Blobs(const Image& img, Rgb8 colour) {
+  std::vector<bool> seen(img.pixels().size(), false);
+  std::vector<Ink> blobs;
+  const auto index = [&](int x, int y) { return static_cast<std::size_t>(y * img.width() + x); };
+  for (int y = 0; y < img.height(); ++y) {
+    for (int x = 0; x < img.width(); ++x) {
+      if (seen[index(x, y)] || img.at(x, y) != colour) continue;
+      Ink ink;
+      std::vector<std::pair<int, int>> stack = {{x, y}};
+      seen[index(x, y)] = true;
+      while (!stack.empty()) {
+        const auto [px, py] = stack.back();
+        stack.pop_back();
+        ++ink.count;
+        ink.x0 = std::min(ink.x0, px);
+        ink.y0 = std::min(ink.y0, py);
+        ink.x1 = std::max(ink.x1, px);
+        ink.y1 = std::max(ink.y1, py);
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = px + dx;
+            const int ny = py + dy;
+            if (img.contains(nx, ny) && !seen[index(nx, ny)] && img.at(nx, ny) == colour) {
+              seen[index(nx, ny)] = true;
+              stack.push_back({nx, ny});
+            }
+          }
+        }
+      }
+      blobs.push_back(ink);
+    }
+  }
+  std::sort(blobs.begin(), blobs.end(), [](const Ink& a, const Ink& b) { return a.x0 < b.x0; });
+  return blobs;
+}
+
+// The blobs of series i's colour that are data, not its legend entry: the legend is right of
+// the plot, so its swatch is the right-most blob.
+std::vector<Ink> DataBlobs(const Image& img, std::size_t i) {
+  std::vector<Ink> blobs = Blobs(img, curve_colour(i));
+  EXPECT_FALSE(blobs.empty()) << "series " << i << " has no legend swatch";
+  if (!blobs.empty()) blobs.pop_back();
+  return blobs;
+}
+
+double CentreX(const Ink& ink) { return (ink.x0 + ink.x1) / 2.0; }
+double CentreY(const Ink& ink) { return (ink.y0 + ink.y1) / 2.0; }
+
+// Where `text`, drawn in black by draw_text, appears in `img` with no other black pixel in the
+// columns just left and right of it.
+bool ContainsText(const Image& img, std::string_view text) {
+  const int w = text_width(text);
+  const int h = text_height();
+  Image stamp(w, h, kWhite);
+  draw_text(stamp, 0, 0, text, kBlack);
+  const auto black = [&](int x, int y) { return img.contains(x, y) && img.at(x, y) == kBlack; };
+  for (int y = 0; y + h <= img.height(); ++y) {
+    for (int x = 0; x + w <= img.width(); ++x) {
+      bool match = true;
+      for (int sy = 0; sy < h && match; ++sy) {
+        for (int sx = 0; sx < w && match; ++sx) {
+          match = black(x + sx, y + sy) == (stamp.at(sx, sy) == kBlack);
+        }
+        match = match && !black(x - 1, y + sy) && !black(x + w, y + sy);
+      }
+      if (match) return true;
+    }
+  }
+  return false;
+}
+
+TEST(PlotXy, SizeAndEverySeriesColour) {
+  const std::vector<XySeries> series = {{"lyon", {{1200, 0.02}, {3400, 0.004}, {9000, 0.0009}}},
+                                        {"kb", {{800, 0.05}, {2000, 0.01}, {40000, 2e-5}}},
+                                        {"one point", {{15000, 0.001}}, false}};
+  for (const bool log : {false, true}) {
+    const Image p = plot_xy(series, {"area", "error", log, log}, "Pareto front");
+    EXPECT_EQ(p.width(), 800);
+    EXPECT_EQ(p.height(), 500);
+    const Image q = plot_xy(series, {"area", "error", log, log}, "Pareto front", 320, 240);
+    EXPECT_EQ(q.width(), 320);
+    EXPECT_EQ(q.height(), 240);
+    for (const Image* img : {&p, &q}) {
+      for (std::size_t i = 0; i < series.size(); ++i) {
+        EXPECT_FALSE(DataBlobs(*img, i).empty()) << i << " log " << log;
+      }
+      EXPECT_GT(InkOf(*img, kBlack).count, 300);  // title, ticks, labels, legend text
+    }
+    // Without lines every point is a marker of its own.
+    std::vector<XySeries> points = series;
+    for (XySeries& s : points) s.lines = false;
+    const Image r = plot_xy(points, {"area", "error", log, log}, "points");
+    EXPECT_EQ(DataBlobs(r, 0).size(), 3u) << log;
+    EXPECT_EQ(DataBlobs(r, 1).size(), 3u) << log;
+    EXPECT_EQ(DataBlobs(r, 2).size(), 1u) << log;
+  }
+}
+
+// Series 0 at the minimum x and y, series 1 at the maximum, series 2 at `mid`: the maximum lands
+// right of and above the minimum, far apart, and `mid` (the midpoint in axis units) halfway.
+void ExpectPlacement(std::pair<double, double> lo, std::pair<double, double> hi,
+                     std::pair<double, double> mid, bool log_x, bool log_y) {
+  SCOPED_TRACE(testing::Message() << "x " << lo.first << ".." << hi.first << (log_x ? " log" : "")
+                                  << ", y " << lo.second << ".." << hi.second
+                                  << (log_y ? " log" : ""));
+  const std::vector<XySeries> series = {
+      {"min", {lo}, false}, {"max", {hi}, false}, {"mid", {mid}, false}};
+  const Image p = plot_xy(series, {"x", "y", log_x, log_y}, "placement");
+  const std::vector<Ink> a = DataBlobs(p, 0);
+  const std::vector<Ink> b = DataBlobs(p, 1);
+  const std::vector<Ink> m = DataBlobs(p, 2);
+  ASSERT_EQ(a.size(), 1u);
+  ASSERT_EQ(b.size(), 1u);
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_GT(CentreX(b[0]) - CentreX(a[0]), p.width() / 2);   // right of
+  EXPECT_GT(CentreY(a[0]) - CentreY(b[0]), p.height() / 2);  // higher: smaller row
+  EXPECT_NEAR(CentreX(m[0]), (CentreX(a[0]) + CentreX(b[0])) / 2, 2.0);
+  EXPECT_NEAR(CentreY(m[0]), (CentreY(a[0]) + CentreY(b[0])) / 2, 2.0);
+}
+
+TEST(PlotXy, LargerXIsRightAndLargerYIsHigherOnLinearAxes) {
+  ExpectPlacement({2, 10}, {7, 30}, {4.5, 20}, false, false);
+  ExpectPlacement({-5e-3, 1e6}, {-1e-3, 3e6}, {-3e-3, 2e6}, false, false);
+  ExpectPlacement({0, -250}, {12000, 250}, {6000, 0}, false, false);
+}
+
+TEST(PlotXy, LargerXIsRightAndLargerYIsHigherOnLogAxes) {
+  // Geometric midpoints: on linear axes they would sit close to the minimum instead.
+  ExpectPlacement({10, 1e-4}, {1e5, 1e-1}, {1e3, std::pow(10.0, -2.5)}, true, true);
+  ExpectPlacement({200, 1e-3}, {800, 1.0}, {400, std::sqrt(1e-3)}, true, true);
+  ExpectPlacement({1, 0.5}, {1e6, 2.5}, {1e3, 1.5}, true, false);
+  ExpectPlacement({-3, 1e-9}, {5, 1e9}, {1, 1}, false, true);
+}
+
+TEST(PlotXy, NonPositiveValuesAreSkippedOnLogAxes) {
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  // Positive (1, 0.01) and (1000, 500); x not positive (-500, 100), (0, 200); y not positive
+  // (300, 0), (600, -300); never finite (10, NaN), (inf, 5).
+  const std::vector<XySeries> series = {{"odd",
+                                         {{1, 0.01},
+                                          {-500, 100},
+                                          {0, 200},
+                                          {300, 0},
+                                          {600, -300},
+                                          {10, kNan},
+                                          {kInf, 5},
+                                          {1000, 500}},
+                                         false}};
+  const Image loglog = plot_xy(series, {"x", "y", true, true}, "log");
+  const std::vector<Ink> shown = DataBlobs(loglog, 0);
+  ASSERT_EQ(shown.size(), 2u);
+  // The skipped values do not stretch the range: the two points span most of the plot.
+  EXPECT_GT(CentreX(shown[1]) - CentreX(shown[0]), loglog.width() / 2);
+  // Only x on a log axis: (300, 0) and (600, -300) are back.
+  EXPECT_EQ(DataBlobs(plot_xy(series, {"x", "y", true, false}, "log x"), 0).size(), 4u);
+  // Linear: everything finite is shown; the NaN and the infinity are still skipped.
+  EXPECT_EQ(DataBlobs(plot_xy(series, {"x", "y"}, "linear"), 0).size(), 6u);
+
+  // A skipped point breaks the line; otherwise the line joins the markers into one blob.
+  const std::vector<XySeries> broken = {{"broken", {{10, 10}, {-1, 5}, {100, 100}}, true}};
+  EXPECT_EQ(DataBlobs(plot_xy(broken, {"x", "y", true, true}, "log"), 0).size(), 2u);
+  EXPECT_EQ(DataBlobs(plot_xy(broken, {"x", "y"}, "linear"), 0).size(), 1u);
+
+  // Nothing plottable at all on a log axis is an error; linear axes take the same points.
+  const std::vector<XySeries> non_positive = {{"np", {{-1, 1}, {0, 2}}}};
+  EXPECT_THROW((void)plot_xy(non_positive, {"x", "y", true, false}, "log"), Error);
+  EXPECT_EQ(plot_xy(non_positive, {"x", "y"}, "linear").width(), 800);
+}
+
+TEST(PlotXy, EmptyInputAndTooSmallThrow) {
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW((void)plot_xy({}, {}, "empty"), Error);
+  EXPECT_THROW((void)plot_xy({{"none", {}}, {"", {}}}, {}, "no points"), Error);
+  EXPECT_THROW((void)plot_xy({{"nan", {{kNan, 1}, {1, kNan}}}}, {}, "nan"), Error);
+  const std::vector<XySeries> ok = {{"a", {{1, 2}, {3, 4}}}};
+  EXPECT_EQ(plot_xy(ok, {}, "").width(), 800);
+  EXPECT_THROW((void)plot_xy(ok, {}, "x", 60, 40), Error);
+  EXPECT_THROW((void)plot_xy(ok, {}, "x", 800, -5), Error);
+  EXPECT_THROW((void)plot_xy(ok, {}, "x", -1, 500), Error);
+  // A single value on either axis still gets a range with the point inside it.
+  for (const bool log : {false, true}) {
+    const std::vector<XySeries> one = {{"one", {{5, 5}, {5, 5}}}};
+    const Image p = plot_xy(one, {"x", "y", log, log}, "one");
+    const std::vector<Ink> blobs = DataBlobs(p, 0);
+    ASSERT_EQ(blobs.size(), 1u);
+    EXPECT_GT(blobs[0].count, 4);  // a whole marker, not a clipped corner
+    const std::vector<XySeries> zero = {{"zero", {{0, 0}}}};
+    if (!log) {
+      EXPECT_EQ(DataBlobs(plot_xy(zero, {}, "zero"), 0).size(), 1u);
+    }
+  }
+}
+
+// The rows (or columns) holding black within the given box, split into runs at blank lines.
+std::vector<std::pair<int, int>> BlackRuns(const Image& img, int x0, int y0, int x1, int y1,
+                                           bool columns) {
+  std::vector<std::pair<int, int>> runs;
+  const int n0 = columns ? x0 : y0;
+  const int n1 = columns ? x1 : y1;
+  for (int n = n0; n < n1; ++n) {
+    bool any = false;
+    for (int m = columns ? y0 : x0; m < (columns ? y1 : x1) && !any; ++m) {
+      any = (columns ? img.at(n, m) : img.at(m, n)) == kBlack;
+    }
+    if (!any) continue;
+    if (!runs.empty() && runs.back().second >= n - (columns ? 5 : 1)) {
+      runs.back().second = n;  // glyphs inside one label are at most 4 blank columns apart
+    } else {
+      runs.push_back({n, n});
+    }
+  }
+  return runs;
+}
+
+TEST(PlotXy, TickLabelsAreShortAndDoNotOverlap) {
+  struct Case {
+    std::pair<double, double> lo, hi;
+    bool log_x, log_y;
+    int width, height;
+  };
+  const std::vector<Case> cases = {
+      {{0, 0}, {12345, 1}, false, false, 800, 500},
+      {{1e-6, 1e-6}, {1e6, 1e6}, true, true, 800, 500},
+      {{0.001, 0.001}, {0.0013, 0.0013}, false, false, 800, 500},
+      {{-5e7, 1e-300}, {5e7, 1e300}, false, true, 800, 500},
+      {{1e-6, 1e-6}, {1e6, 1e6}, true, true, 300, 200},
+      {{0.001, 0.001}, {0.0013, 0.0013}, true, true, 300, 200},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(testing::Message() << c.lo.first << ".." << c.hi.first << " " << c.width);
+    // No title or captions: the only black below the x axis and left of the y axis is ticks and
+    // tick labels.
+    const Image p =
+        plot_xy({{"s", {c.lo, c.hi}}}, {"", "", c.log_x, c.log_y}, "", c.width, c.height);
+    // The x axis is the row with the longest black run, the y axis the column.
+    int axis_row = 0, axis_col = 0, best_row = 0, best_col = 0;
+    for (int y = 0; y < p.height(); ++y) {
+      for (int x = 0, run = 0; x < p.width(); ++x) {
+        run = p.at(x, y) == kBlack ? run + 1 : 0;
+        if (run > best_row) best_row = run, axis_row = y;
+      }
+    }
+    for (int x = 0; x < p.width(); ++x) {
+      for (int y = 0, run = 0; y < p.height(); ++y) {
+        run = p.at(x, y) == kBlack ? run + 1 : 0;
+        if (run > best_col) best_col = run, axis_col = x;
+      }
+    }
+    ASSERT_GT(best_row, p.width() / 2);
+    ASSERT_GT(best_col, p.height() / 2);
+    const int longest = text_width("1.2e+04");  // seven characters
+    const auto x_labels = BlackRuns(p, 0, axis_row + 1, p.width(), p.height(), true);
+    EXPECT_GE(x_labels.size(), c.width >= 800 ? 3u : 2u);
+    for (const auto& [a, b] : x_labels) EXPECT_LE(b - a + 1, longest) << "x label at " << a;
+    // Without the tick marks: horizontal lines that touch the y axis.
+    Image left(axis_col, p.height(), kWhite);
+    blit(left, p, 0, 0);
+    for (int y = 0; y < left.height(); ++y) {
+      for (int x = axis_col - 1; x >= 0 && left.at(x, y) == kBlack; --x) left.at(x, y) = kWhite;
+    }
+    const auto y_labels = BlackRuns(left, 0, 0, left.width(), left.height(), false);
+    EXPECT_GE(y_labels.size(), c.height >= 500 ? 3u : 2u);
+    for (const auto& [a, b] : y_labels) {
+      EXPECT_LE(b - a + 1, text_height()) << "y label at " << a;
+      const auto cols = BlackRuns(left, 0, a, left.width(), b + 1, true);
+      ASSERT_EQ(cols.size(), 1u) << "y label at " << a;
+      EXPECT_LE(cols[0].second - cols[0].first + 1, longest) << "y label at " << a;
+    }
+  }
+}
+
+TEST(PlotXy, TickLabelsReadAsNumbers) {
+  // Some plain tick values must be labelled in one of their short spellings.
+  const auto any_of = [](const Image& img, std::initializer_list<std::string_view> texts) {
+    for (const std::string_view t : texts) {
+      if (ContainsText(img, t)) return true;
+    }
+    return false;
+  };
+  const Image unit = plot_xy({{"s", {{0, 0}, {1, 1}}}}, {"x", "y"}, "");
+  EXPECT_TRUE(any_of(unit, {"0.5"}));
+  EXPECT_TRUE(any_of(unit, {"0", "0.0"}));
+  const Image big = plot_xy({{"s", {{0, 0}, {12000, 12000}}}}, {"x", "y"}, "");
+  EXPECT_TRUE(any_of(big, {"10000", "1e+4", "1e+04", "1e4", "1.0e+04"}));
+  const Image decades = plot_xy({{"s", {{1e-3, 1e-3}, {1, 1}}}}, {"x", "y", true, true}, "");
+  EXPECT_TRUE(any_of(decades, {"0.001", "1e-3", "1e-03"}));
+  EXPECT_TRUE(any_of(decades, {"0.01", "1e-2", "1e-02"}));
+  EXPECT_TRUE(any_of(decades, {"1", "1e+0", "1e+00", "1e0"}));
+  // Decade labels on a log axis, not plain steps: 0.5 is no decade.
+  EXPECT_FALSE(ContainsText(decades, "0.5"));
 }
 
 }  // namespace

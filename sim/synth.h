@@ -1,0 +1,64 @@
+// Real area and speed of a configuration's RTL: Yosys generic synthesis (cells, transistor
+// estimate) and iCE40 synthesis with place and route (LUTs, carries, DSPs, flip-flops, fmax),
+// cached by content so a sweep pays for each configuration once.
+//
+// The RTL top and its sources come from cmake/PhongsimRtl.cmake, its parameters from
+// rtl_gflags(cfg) (scripts/config_gflags.py, turned into yosys `chparam -set` as
+// scripts/synth_stats.sh does). Both flows refuse latches.
+//
+// Generic: `synth -flatten -top <top>`; `cells` is the flattened cell count, `transistors` Yosys's
+// `stat -tech cmos` estimate after `dffunmap` (enables and synchronous resets become gates so the
+// flip-flops are costed; the few asynchronous-reset flip-flops have no cost in Yosys's table and
+// are left out).
+//
+// iCE40: the top is wrapped in serial shift registers (so that any port width needs five pins),
+// flattened on its own and mapped with `synth_ice40 -dsp -noflatten`; lut4/carry/mac16/ff count the
+// top's cells only, not the wrapper's. nextpnr-ice40 then places and routes the whole on an
+// UltraPlus UP5K (kSynthIce40Device: the largest iCE40 with SB_MAC16 DSPs, 5280 LCs and 8 DSPs)
+// aiming at kSynthIce40TargetMhz with a fixed seed; fmax_mhz is what it achieved. A design that
+// does not fit the device (more DSPs or LCs than it has) gets fits = false and fmax_mhz = 0.
+//
+// Cache: rtl_cache_dir() / "synth" / <key>.json, the key hashing the top's RTL sources (contents),
+// the -G parameters, the options, the flow and the tool versions (`yosys -V`,
+// `nextpnr-ice40 --version`).
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "model/config.h"
+
+namespace phongsim {
+
+inline constexpr const char* kSynthIce40Device = "up5k";   // nextpnr-ice40 --up5k
+inline constexpr const char* kSynthIce40Package = "sg48";  // --package
+inline constexpr int kSynthIce40TargetMhz = 100;           // --freq: above what iCE40 reaches
+inline constexpr int kSynthIce40Seed = 1;                  // --seed: reproducible placement
+
+struct SynthOptions {
+  bool generic = true;
+  bool ice40 = false;
+};
+
+struct SynthResult {
+  // Yosys generic synthesis (synth -top; flattened): cell count and `stat -tech cmos` transistor
+  // estimate.
+  std::int64_t cells = -1, transistors = -1;
+  // iCE40: synth_ice40 -dsp (SB_MAC16 for large multipliers), then nextpnr-ice40 on the UP5K. A
+  // design that does not fit has fits = false and fmax_mhz = 0.
+  std::int64_t lut4 = -1, carry = -1, mac16 = -1, ff = -1;
+  bool fits = true;
+  double fmax_mhz = -1;
+  bool cached = false;  // came from the cache
+  std::string key;      // cache key
+};
+
+// Synthesizes the configuration's RTL top with its -G parameters, checking there are no latches
+// (Error otherwise). Returns a cached result without running the tools when there is one; new
+// results are written to the cache atomically. `log` (may be null) gets one line per synthesis or
+// place-and-route run. Errors: a missing tool (naming it and its Debian package), a failing tool
+// (with the last line of its log).
+SynthResult synthesize(const Config& cfg, const SynthOptions& options, std::FILE* log);
+
+}  // namespace phongsim

@@ -1,0 +1,158 @@
+// Tests for sim/synth.*: Yosys generic and iCE40 synthesis with nextpnr of LIRP configurations,
+// the content-keyed cache (in a temporary PHONGSIM_CACHE), and the errors for a missing tool and a
+// failing yosys run. Needs yosys and nextpnr-ice40 (label synth); about 15 s.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "model/config.h"
+#include "model/error.h"
+#include "sim/synth.h"
+#include "tests/error_of.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using phongsim::Config;
+using phongsim::synthesize;
+using phongsim::SynthOptions;
+using phongsim::SynthResult;
+using phongsim::testing::ErrorOf;
+
+const fs::path kSourceDir = PHONGSIM_SOURCE_DIR;
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A fresh directory per test, which is also the synthesis cache (PHONGSIM_CACHE).
+class SynthTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           fmt::format("phongsim_synth_test_{}_{}", getpid(), info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "configs");
+    setenv("PHONGSIM_CACHE", (dir_ / "cache").c_str(), 1);
+  }
+  void TearDown() override {
+    unsetenv("PHONGSIM_CACHE");
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  // A configuration file in the test directory.
+  fs::path Write(const std::string& name, const std::string& text) const {
+    const fs::path p = dir_ / "configs" / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+  }
+  fs::path dir_;
+};
+
+Config Lirp(const std::string& name) {
+  return Config::load(kSourceDir / "configs" / "lirp" / (name + ".toml"));
+}
+
+TEST_F(SynthTest, LirpGenericAndIce40AreCachedByContent) {
+  const SynthOptions both{.generic = true, .ice40 = true};
+  const SynthResult r = synthesize(Lirp("default"), both, stderr);
+  EXPECT_FALSE(r.cached);
+  EXPECT_GT(r.cells, 0);
+  EXPECT_GT(r.transistors, r.cells);
+  EXPECT_GT(r.lut4, 0);
+  EXPECT_GT(r.carry, 0);
+  EXPECT_GT(r.mac16, 0);  // the LIRP's three multipliers fit SB_MAC16s
+  EXPECT_LE(r.mac16, 8);
+  EXPECT_GT(r.ff, 0);
+  EXPECT_TRUE(r.fits);
+  EXPECT_GT(r.fmax_mhz, 0);
+  EXPECT_EQ(r.key.size(), 16U);
+  const fs::path entry = dir_ / "cache" / "synth" / (r.key + ".json");
+  EXPECT_TRUE(fs::exists(entry));
+  EXPECT_NE(ReadFile(entry).find("\"fmax_mhz\""), std::string::npos);
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir_ / "cache" / "synth")) {
+    ++files;
+    EXPECT_EQ(e.path().extension(), ".json") << e.path();  // no temporary left
+  }
+  EXPECT_EQ(files, 1);
+
+  // Same content under another name: from the cache, without running the tools.
+  const fs::path copy =
+      Write("renamed.toml", ReadFile(kSourceDir / "configs" / "lirp" / "default.toml"));
+  const SynthResult again = synthesize(Config::load(copy), both, nullptr);
+  EXPECT_TRUE(again.cached);
+  EXPECT_EQ(again.key, r.key);
+  EXPECT_EQ(again.cells, r.cells);
+  EXPECT_EQ(again.transistors, r.transistors);
+  EXPECT_EQ(again.lut4, r.lut4);
+  EXPECT_EQ(again.carry, r.carry);
+  EXPECT_EQ(again.mac16, r.mac16);
+  EXPECT_EQ(again.ff, r.ff);
+  EXPECT_EQ(again.fits, r.fits);
+  EXPECT_EQ(again.fmax_mhz, r.fmax_mhz);
+}
+
+TEST_F(SynthTest, NarrowerFormatsGiveFewerCells) {
+  const SynthOptions generic{.generic = true, .ice40 = false};
+  const SynthResult wide = synthesize(Lirp("default"), generic, stderr);
+  const fs::path narrow =
+      Write("narrow.toml", ReadFile(kSourceDir / "configs" / "lirp" / "narrow.toml"));
+  const SynthResult small = synthesize(Config::load(narrow), generic, stderr);
+  EXPECT_FALSE(small.cached);
+  EXPECT_NE(small.key, wide.key);
+  EXPECT_GT(small.cells, 0);
+  EXPECT_LT(small.cells, wide.cells);
+  EXPECT_LT(small.transistors, wide.transistors);
+  EXPECT_EQ(small.lut4, -1);  // not asked for
+  EXPECT_EQ(small.fmax_mhz, -1);
+}
+
+TEST_F(SynthTest, TooManyDspsDoesNotFit) {
+  // The wide LIRP's operands (S1.15 x 1.16) are wider than a 16x16 SB_MAC16, so its three
+  // products take more than the UP5K's eight: a result, not an error.
+  const SynthResult r =
+      synthesize(Lirp("wide"), SynthOptions{.generic = false, .ice40 = true}, stderr);
+  EXPECT_GT(r.mac16, 8);
+  EXPECT_GT(r.lut4, 0);
+  EXPECT_FALSE(r.fits);
+  EXPECT_EQ(r.fmax_mhz, 0);
+  EXPECT_EQ(r.cells, -1);  // not asked for
+  EXPECT_TRUE(
+      synthesize(Lirp("wide"), SynthOptions{.generic = false, .ice40 = true}, nullptr).cached);
+}
+
+TEST_F(SynthTest, MissingToolIsNamedWithItsPackage) {
+  const std::string path = getenv("PATH") != nullptr ? getenv("PATH") : "";
+  setenv("PATH", (dir_ / "configs").c_str(), 1);  // no yosys there
+  const std::string message =
+      ErrorOf([] { (void)synthesize(Lirp("default"), SynthOptions{}, nullptr); });
+  setenv("PATH", path.c_str(), 1);
+  EXPECT_NE(message.find("yosys"), std::string::npos) << message;
+  EXPECT_NE(message.find("Debian package yosys"), std::string::npos) << message;
+}
+
+TEST_F(SynthTest, YosysFailureGivesItsLastLine) {
+  // A parameter the RTL does not have: chparam fails.
+  std::string text = ReadFile(kSourceDir / "configs" / "lirp" / "default.toml");
+  text += "\n[param]\nno_such_param = 1\n";
+  const fs::path bad = Write("bad.toml", text);
+  const std::string message =
+      ErrorOf([&] { (void)synthesize(Config::load(bad), SynthOptions{}, nullptr); });
+  EXPECT_NE(message.find("yosys synthesis of lirp_unit failed"), std::string::npos) << message;
+  EXPECT_NE(message.find("NoSuchParam"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dir_ / "cache" / "synth") &&
+               !fs::is_empty(dir_ / "cache" / "synth"));  // nothing cached
+}
+
+}  // namespace
