@@ -264,10 +264,11 @@ int cmd_sweep(const std::string& action, const std::string& file, const std::str
     const fs::path dest = write.empty() ? fs::path(PHONGSIM_SOURCE_DIR) / "configs" /
                                               base.pipeline() / (spec.name + ".toml")
                                         : fs::path(write);
-    fmt::print(
-        "found after {} evaluations: {} fraction bits fewer, max error {:.4g} LSB "
-        "(budget {})\n",
-        r.evaluations, r.bits_saved, r.error.max_lsb, spec.max_lsb);
+    fmt::print("found after {} evaluations: {} fraction bits fewer, max error {:.4g} LSB{}\n",
+               r.evaluations, r.bits_saved, r.error.max_lsb,
+               std::isnan(r.colour_correctness)
+                   ? ""
+                   : fmt::format(", colour correctness {:.5f}", r.colour_correctness));
     for (const auto& [sig, f] : r.formats) fmt::print("  {} = {}\n", sig, f);
     OutputFile found(dest);  // unwritable: fail before Verilating
     std::fputs(r.toml.c_str(), found.get());
@@ -495,7 +496,7 @@ int analyze_quad(std::uint64_t samples, std::uint64_t seed) {
   fmt::print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9} {:>9}\n", "config", "mode", "acc", "out",
              "pixels", "max", "mean");
   for (const auto& file : pipeline_configs("quad")) {
-    const Loaded l = load(Target{"quad", file.string()});
+    const Loaded l = load(Target{"quad", file.string(), false, ""});
     const QuadFormats f = QuadFormats::from_config(l.cfg);
     const QuadMode mode = quad_mode(l.cfg);
     const QuadOutputError e = quad_output_error(f, mode, triangles * 10, seed);
@@ -519,7 +520,7 @@ int cmd_analyze(const std::string& pipeline, std::vector<std::string> configs,
     for (const auto& f : pipeline_configs("lyon")) configs.push_back(f.string());
   }
   std::vector<Loaded> loaded;
-  for (const auto& c : configs) loaded.push_back(load(Target{"lyon", c}));
+  for (const auto& c : configs) loaded.push_back(load(Target{"lyon", c, false, ""}));
   const auto model_of = [](const Loaded& l) -> const LyonModel& {
     return dynamic_cast<const LyonModel&>(*l.model);
   };

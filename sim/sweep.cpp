@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <toml++/toml.h>
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -720,6 +721,16 @@ SearchSpec load_search(const fs::path& file) {
     } else if (key == "max_lsb" && (v.is_floating_point() || v.is_integer()) &&
                *v.value<double>() > 0) {
       s.max_lsb = *v.value<double>();
+    } else if (key == "min_colour_correctness" && (v.is_floating_point() || v.is_integer()) &&
+               *v.value<double>() > 0 && *v.value<double>() <= 1) {
+      s.min_colour_correctness = *v.value<double>();
+    } else if (key == "scene" && v.is_string()) {
+      s.scene = *v.value<std::string>();
+    } else if (key == "method" && v.is_string()) {
+      s.method = *v.value<std::string>();
+    } else if (key == "scene_size" && v.is_integer() && *v.value<std::int64_t>() >= 1 &&
+               *v.value<std::int64_t>() <= 2048) {
+      s.scene_size = static_cast<int>(*v.value<std::int64_t>());
     } else if (key == "samples" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
       s.samples = static_cast<std::uint64_t>(*v.value<std::int64_t>());
     } else if (key == "seed" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
@@ -729,11 +740,26 @@ SearchSpec load_search(const fs::path& file) {
     } else {
       fail_at(file, v,
               fmt::format("unexpected '{}' (expected name, base, signals, min_frac, "
-                          "max_lsb > 0, samples, seed, verify_vectors)",
+                          "max_lsb > 0, min_colour_correctness in (0, 1], scene, method, "
+                          "scene_size, samples, seed, verify_vectors)",
                           key));
     }
   }
   if (s.base.empty()) throw Error(fmt::format("{}: no base configuration", file.string()));
+  if (std::isinf(s.max_lsb) && s.min_colour_correctness == 0) {
+    throw Error(fmt::format("{}: no budget (max_lsb or min_colour_correctness)", file.string()));
+  }
+  if (s.min_colour_correctness > 0) {
+    if (s.scene.empty() || s.method.empty()) {
+      throw Error(fmt::format("{}: min_colour_correctness needs scene and method", file.string()));
+    }
+    const MethodInfo& m = find_method(s.method);
+    const std::string pipeline = Config::load(s.base).pipeline();
+    if (fs::path(std::string(m.config)).parent_path() != pipeline) {
+      throw Error(fmt::format("{}: method '{}' does not run on a {} unit", file.string(), s.method,
+                              pipeline));
+    }
+  }
   if (s.signals.empty()) throw Error(fmt::format("{}: no signals to narrow", file.string()));
   const toml::table base = parse_file(s.base);
   for (const auto& sig : s.signals) {
@@ -758,27 +784,62 @@ SearchResult search_min_width(const SearchSpec& spec,
       values.emplace_back("format." + sig, fmt::format("\"{}\"", f.at(sig).str()));
     return values;
   };
-  // Evaluates a candidate: its error, or nothing when the pipeline refuses it.
+  // Candidates are files (the renderer loads them): in a directory of their own.
+  const fs::path dir =
+      fs::temp_directory_path() / fmt::format("phongsim-search-{}-{}", spec.name, getpid());
+  fs::create_directories(dir);
+  const std::shared_ptr<void> cleanup(nullptr, [dir](void*) {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  });
+  struct Evaluation {
+    ModelError error;
+    double cc = NAN;
+    [[nodiscard]] std::string str() const {
+      return std::isnan(cc) ? fmt::format("max error {:.4g} LSB", error.max_lsb)
+                            : fmt::format("max error {:.4g} LSB, colour correctness {:.5f}",
+                                          error.max_lsb, cc);
+    }
+  };
+  // Evaluates a candidate, or nothing when the pipeline refuses it.
   const auto try_formats =
-      [&](const std::map<std::string, fx::Format>& f) -> std::optional<ModelError> {
+      [&](const std::map<std::string, fx::Format>& f) -> std::optional<Evaluation> {
     ++result.evaluations;
     try {
-      const std::string toml = point_toml(spec.base, candidate(f), "", "");
-      const Config cfg = Config::parse(toml, spec.name + ".toml");
-      return model_error(cfg, spec.samples, spec.seed);
+      const fs::path file = dir / (spec.name + ".toml");
+      write_text(file, point_toml(spec.base, candidate(f), "", ""));
+      const Config cfg = Config::load(file);
+      Evaluation e{model_error(cfg, spec.samples, spec.seed)};
+      if (spec.min_colour_correctness > 0) {
+        RenderOptions o;
+        o.scene = spec.scene;
+        o.methods = {spec.method};
+        o.backend = Backend::model;
+        o.size = spec.scene_size;
+        o.unit_config = file.string();
+        e.cc = render(o, [](std::string_view, std::uint64_t, std::uint64_t) {})
+                   .results.front()
+                   .metrics.colour_correctness;
+      }
+      return e;
     } catch (const Error&) {
       return std::nullopt;
     }
   };
+  const auto within = [&](const Evaluation& e) {
+    return e.error.max_lsb <= spec.max_lsb &&
+           (std::isnan(e.cc) || e.cc >= spec.min_colour_correctness);
+  };
   const auto first = try_formats(formats);
   if (!first)
     throw Error(fmt::format("{}: the base configuration does not evaluate", spec.file.string()));
-  if (first->max_lsb > spec.max_lsb) {
-    throw Error(fmt::format("{}: the base already misses the budget (max error {:.4g} LSB > {})",
-                            spec.file.string(), first->max_lsb, spec.max_lsb));
+  if (!within(*first)) {
+    throw Error(fmt::format("{}: the base already misses the budget ({})", spec.file.string(),
+                            first->str()));
   }
-  result.error = *first;
-  note(fmt::format("base: max error {:.4g} LSB", first->max_lsb));
+  result.error = first->error;
+  result.colour_correctness = first->cc;
+  note(fmt::format("base: {}", first->str()));
   for (bool changed = true; changed;) {
     changed = false;
     for (const auto& sig : spec.signals) {
@@ -786,12 +847,13 @@ SearchResult search_min_width(const SearchSpec& spec,
         auto next = formats;
         next[sig].frac_bits -= 1;
         const auto e = try_formats(next);
-        if (!e || e->max_lsb > spec.max_lsb) break;
+        if (!e || !within(*e)) break;
         formats = next;
-        result.error = *e;
+        result.error = e->error;
+        result.colour_correctness = e->cc;
         ++result.bits_saved;
         changed = true;
-        note(fmt::format("{} -> {}: max error {:.4g} LSB", sig, formats[sig].str(), e->max_lsb));
+        note(fmt::format("{} -> {}: {}", sig, formats[sig].str(), e->str()));
       }
     }
   }
@@ -799,16 +861,18 @@ SearchResult search_min_width(const SearchSpec& spec,
   std::string values;
   for (const auto& [k, v] : result.formats)
     values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", k, v);
-  result.toml =
-      point_toml(spec.base, candidate(formats),
-                 fmt::format("# Found by `phongsim sweep search {}`: the narrowest fraction "
-                             "bits of {} with max error <= {} LSB ({} samples, seed {}).\n"
-                             "# Base {}; {}; max error {:.4g} LSB.\n",
-                             spec.file.filename().string(), fmt::join(spec.signals, ", "),
-                             spec.max_lsb, spec.samples, spec.seed, spec.base.filename().string(),
-                             values, result.error.max_lsb),
-                 fmt::format("found by search {}: max error {:.4g} LSB <= {}", spec.name,
-                             result.error.max_lsb, spec.max_lsb));
+  result.toml = point_toml(
+      spec.base, candidate(formats),
+      fmt::format("# Found by `phongsim sweep search {}`: the narrowest fraction "
+                  "bits of {} within the budget ({} samples, seed {}).\n"
+                  "# Base {}; {}; max error {:.4g} LSB{}.\n",
+                  spec.file.filename().string(), fmt::join(spec.signals, ", "), spec.samples,
+                  spec.seed, spec.base.filename().string(), values, result.error.max_lsb,
+                  std::isnan(result.colour_correctness)
+                      ? ""
+                      : fmt::format(", colour correctness {:.5f} on {} ({})",
+                                    result.colour_correctness, spec.scene, spec.method)),
+      fmt::format("found by search {}: max error {:.4g} LSB", spec.name, result.error.max_lsb));
   return result;
 }
 

@@ -6,6 +6,7 @@
 // a greedy search finds the narrowest configuration within an error budget. docs/exploration.md.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -117,7 +118,13 @@ struct SearchSpec {
   std::filesystem::path base;
   std::vector<std::string> signals;  // [format] keys whose fraction bits the search reduces
   int min_frac = 1;
-  double max_lsb = 1.0;  // budget: model_error().max_lsb <= max_lsb
+  // Budgets (at least one): model_error().max_lsb <= max_lsb, and colour correctness against
+  // float Phong >= min_colour_correctness on `scene` rendered by `method` (a unit method of the
+  // base's pipeline) through the candidate, model backend, at `scene_size`.
+  double max_lsb = INFINITY;
+  double min_colour_correctness = 0;
+  std::string scene, method;
+  int scene_size = 32;
   std::uint64_t samples = 20000;
   std::uint64_t seed = 1;
   std::uint64_t verify_vectors = 1000000;  // co-simulation of the result
@@ -127,6 +134,7 @@ struct SearchSpec {
 struct SearchResult {
   std::string toml;  // the found configuration
   ModelError error;
+  double colour_correctness = NAN;                           // with a colour-correctness budget
   std::vector<std::pair<std::string, std::string>> formats;  // signal -> found format
   int bits_saved = 0;                                        // fraction bits removed in total
   std::size_t evaluations = 0;

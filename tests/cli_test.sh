@@ -294,7 +294,13 @@ EOT
     printf 'base = "nonesuch.toml"\n' >"$tmp/s5.toml"
     expect_error "nonesuch.toml does not exist" "$phongsim" sweep plan "$tmp/s5.toml" --out "$tmp/o"
     [ ! -e "$tmp/o" ] || fail "output written for a bad sweep file"
-    printf 'base = "%s"\nsignals = ["q"]\n' "$base" >"$tmp/search.toml"
+    printf 'base = "%s"\nsignals = ["p"]\n' "$base" >"$tmp/search.toml"
+    expect_error "no budget" "$phongsim" sweep search "$tmp/search.toml" --write "$tmp/found.toml"
+    printf 'base = "%s"\nsignals = ["p"]\nmin_colour_correctness = 0.9\nscene = "shinyballs"\nmethod = "lyon-k2"\n' \
+      "$base" >"$tmp/search.toml"
+    expect_error "method 'lyon-k2' does not run on a lirp unit" \
+      "$phongsim" sweep search "$tmp/search.toml" --write "$tmp/found.toml"
+    printf 'base = "%s"\nsignals = ["q"]\nmax_lsb = 1\n' "$base" >"$tmp/search.toml"
     expect_error "signal 'q' is not a \[format\] key" "$phongsim" sweep search "$tmp/search.toml" \
       --write "$tmp/found.toml"
     [ ! -e "$tmp/found.toml" ] || fail "a configuration was written for a bad search file"
@@ -309,6 +315,12 @@ EOT
     grep -q 'p = .S1.8.' "$tmp/found.toml" || fail "found: $(cat "$tmp/found.toml")"
     "$phongsim" cosim --config "$tmp/found.toml" --vectors 1000 >/dev/null 2>&1 ||
       fail "the written configuration does not load"
+    # A colour-correctness budget on a scene (model only: Lyon's Verilation is left to users).
+    "$phongsim" sweep search "$src/sweeps/lyon-cc-search.toml" --write "$tmp/cc.toml" --no-verify \
+      >"$tmp/stdout" 2>&1 || fail "cc search: $(cat "$tmp/stdout")"
+    grep -qE "^found after [0-9]+ evaluations: [1-9][0-9]* fraction bits fewer, .*colour correctness 0\.96[5-9]" \
+      "$tmp/stdout" || fail "cc search: $(cat "$tmp/stdout")"
+    grep -q "colour correctness" "$tmp/cc.toml" || fail "cc search result: $(cat "$tmp/cc.toml")"
     ;;
 
   *)
