@@ -100,6 +100,19 @@ std::string describe(const std::vector<std::pair<std::string, std::string>>& val
   return d;
 }
 
+// `method` on `scene` through the unit configuration `config` (model backend) against float
+// Phong.
+ImageMetrics scene_metrics(const std::string& scene, const std::string& method, int size,
+                           const fs::path& config) {
+  RenderOptions o;
+  o.scene = scene;
+  o.methods = {method};
+  o.backend = Backend::model;
+  o.size = size;
+  o.unit_config = config.string();
+  return render(o, [](std::string_view, std::uint64_t, std::uint64_t) {}).results.front().metrics;
+}
+
 std::string unquote(std::string v) {  // TOML string literals: "..." or '...'
   if (v.size() >= 2 && (v.front() == '"' || v.front() == '\'')) return v.substr(1, v.size() - 2);
   return v;
@@ -402,15 +415,9 @@ PointResult evaluate_point(const SweepSpec& spec, const fs::path& config, std::s
   r.error = model_error(cfg, spec.samples, spec.seed);
   r.latency = structural_latency(cfg);
   for (const SweepScene& sc : spec.scenes) {
-    RenderOptions o;
-    o.scene = sc.scene;
-    o.methods = {sc.method};
-    o.backend = Backend::model;
-    o.size = spec.scene_size;
-    o.unit_config = config.string();
-    const RenderResult rr = render(o, [](std::string_view, std::uint64_t, std::uint64_t) {});
-    r.colour_correctness.emplace_back(sc.scene, rr.results.front().metrics.colour_correctness);
-    r.psnr.emplace_back(sc.scene, rr.results.front().metrics.psnr);
+    const ImageMetrics m = scene_metrics(sc.scene, sc.method, spec.scene_size, config);
+    r.colour_correctness.emplace_back(sc.scene, m.colour_correctness);
+    r.psnr.emplace_back(sc.scene, m.psnr);
   }
   if (spec.synth.generic || spec.synth.ice40) {
     r.synth = synthesize(cfg, spec.synth, log);
@@ -811,15 +818,7 @@ SearchResult search_min_width(const SearchSpec& spec,
       const Config cfg = Config::load(file);
       Evaluation e{model_error(cfg, spec.samples, spec.seed)};
       if (spec.min_colour_correctness > 0) {
-        RenderOptions o;
-        o.scene = spec.scene;
-        o.methods = {spec.method};
-        o.backend = Backend::model;
-        o.size = spec.scene_size;
-        o.unit_config = file.string();
-        e.cc = render(o, [](std::string_view, std::uint64_t, std::uint64_t) {})
-                   .results.front()
-                   .metrics.colour_correctness;
+        e.cc = scene_metrics(spec.scene, spec.method, spec.scene_size, file).colour_correctness;
       }
       return e;
     } catch (const Error&) {
