@@ -23,6 +23,7 @@
 #include "sim/bench.h"
 #include "sim/cosim.h"
 #include "sim/eval.h"
+#include "sim/file_util.h"
 #include "sim/kb_analysis.h"
 #include "sim/lyon_analysis.h"
 #include "sim/output_file.h"
@@ -325,17 +326,8 @@ int cmd_sweep(const std::string& action, const std::string& file, const std::str
   }
   if (action == "run") {
     const auto results = run_sweep(spec, out, sweep_progress(), stderr);
-    std::string summary;
-    {
-      std::FILE* f = std::fopen((fs::path(out) / "summary.md").c_str(), "r");
-      if (f != nullptr) {
-        char buf[4096];
-        std::size_t n = 0;
-        while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) summary.append(buf, n);
-        std::fclose(f);
-      }
-    }
-    fmt::print("{}\n{} points: {}/sweep.csv, {}/summary.md\n", summary, results.size(), out, out);
+    fmt::print("{}\n{} points: {}/sweep.csv, {}/summary.md\n",
+               read_file(fs::path(out) / "summary.md"), results.size(), out, out);
     return 0;
   }
   throw Error(fmt::format("unknown sweep action '{}' (run, plan, point, merge, search)", action));

@@ -262,6 +262,9 @@ struct Frame {
   bool mesh = false;
   Mesh geometry;                          // world positions and normals
   std::vector<quad::SubpixelTri> screen;  // projected triangles (mesh scenes)
+  // Each triangle's covered pixels within the image, row-major (quad::raster): every method
+  // and the hardware units cover exactly these.
+  std::vector<std::vector<std::pair<int, int>>> coverage;
   Material material;
   std::vector<std::pair<std::string, std::vector<bool>>> regions;  // RenderResult::regions
 };
@@ -387,9 +390,10 @@ Frame mesh_frame(const Scene& sc, int width_override) {
     }
     tri = quad::quantize(sv[idx[0]], sv[idx[1]], sv[idx[2]], kSubBits);
     f.screen.push_back(tri);
+    f.coverage.push_back(quad::raster(tri, f.width, f.height));
     if (quad::orientation(tri) == 0) continue;
     const auto pv = quad::to_pixels(tri);
-    for (const auto& [x, y] : quad::raster(tri, f.width, f.height)) {
+    for (const auto& [x, y] : f.coverage.back()) {
       const quad::St st = quad::st_at(pv[0], pv[1], pv[2], {x + 0.5, y + 0.5});
       const double z =
           (1 - st.s - st.t) * depth[idx[0]] + st.s * depth[idx[1]] + st.t * depth[idx[2]];
@@ -630,10 +634,12 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
       colour[ch] = m.kind == Kind::gouraud ? quad::linear_coefficients(r[0], r[2], r[4])
                                            : quad::coefficients(r);
     }
-    const auto w = QuadModel::words(quad_program(f.screen[t], colour, qf));
+    // Clipped to the image, so the unit emits exactly the triangle's coverage.
+    const auto w =
+        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height}));
     words.insert(words.end(), w.begin(), w.end());
     tris.push_back(static_cast<int>(t));
-    counts.push_back(quad::raster(f.screen[t], 2048, 2048).size());
+    counts.push_back(f.coverage[t].size());
   }
   const std::vector<std::int64_t> out = unit.run(words, progress, what);
   std::size_t expected = 0;
@@ -648,7 +654,7 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
     for (std::size_t i = 0; i < counts[k]; ++i, at += 5) {
       const auto x = static_cast<int>(out[at]);
       const auto y = static_cast<int>(out[at + 1]);
-      if (x >= f.width || y >= f.height) continue;
+      if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
       const int o = f.owner[static_cast<std::size_t>(y) * f.width + x];
       if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != tris[k]) continue;
       const double full = static_cast<double>(qf.out.max_raw());
@@ -677,7 +683,7 @@ std::vector<KbEnds> kb_spans(const Frame& f, std::size_t t) {
   const auto& idx = f.geometry.triangles[t];
   const auto pv = quad::to_pixels(f.screen[t]);
   std::vector<KbEnds> spans;
-  for (const auto& [x, y] : quad::raster(f.screen[t], f.width, f.height)) {
+  for (const auto& [x, y] : f.coverage[t]) {
     if (spans.empty() || spans.back().y != y) spans.push_back({y, x, x, {}, {}, {}, {}});
     spans.back().x1 = x;
   }
@@ -700,28 +706,66 @@ kb::QuadParams kb_ab(double n) {
   return r <= 125 ? kb_params(r, KbAbSource::least_squares) : kb::closed_form(r);
 }
 
-// One light's diffuse and specular amount at t along a span, in float, by the method's variant.
-Amounts kb_amounts(Kind kind, Vec3 n1, Vec3 n2, Vec3 l1, Vec3 l2, Vec3 h1, Vec3 h2, double t,
-                   double shininess) {
-  const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * shininess);
-  const double n4 = 4 * shininess;
-  const auto term = [&](Vec3 v1, Vec3 v2, const kb::QuadParams& ab, double n) {
-    switch (kind) {
-      case Kind::kb_exact:
-        return kb::quad(std::acos(std::clamp(kb::cos_exact(n1, n2, v1, v2, t), -1.0, 1.0)), ab);
-      case Kind::kb_decompose: {
-        const kb::Decomposition d = kb::decompose(n1, n2, v1, v2);
-        return kb::quad(d.n.theta0 + t * d.n.dtheta, ab) *
-               kb::quad(d.l.theta0 + t * d.l.dtheta, ab);
-      }
-      default: {
-        const kb::ScanlineAngles a = kb::one_vector(n1, n2, v1, v2);
-        return std::pow(std::max(a.scale, 0.0), n) * kb::quad(a.theta0 + t * a.dtheta, ab);
-      }
-    }
-  };
-  return {term(l1, l2, ab1, 1), term(h1, h2, abn, n4)};
+// One light along one span: the light and halfway directions at the two ends.
+struct KbLightEnds {
+  Vec3 l1, l2, h1, h2;
+};
+KbLightEnds kb_light_ends(const Frame& f, const Light& l, const KbEnds& e) {
+  const Vec3 l1 = Lighting::l_at(l, e.p1), l2 = Lighting::l_at(l, e.p2);
+  return {l1, l2, normalized(l1 + f.lighting.v_at(e.p1)), normalized(l2 + f.lighting.v_at(e.p2))};
 }
+
+// One light's diffuse (N, L) and specular (N, H) amounts along a span by the method's variant,
+// with the per-span work (the decompositions, the one-vector angles) done once.
+class KbLightTerms {
+ public:
+  KbLightTerms(Kind kind, const KbEnds& e, const KbLightEnds& le, double shininess)
+      : kind_(kind),
+        n1_(e.n1),
+        n2_(e.n2),
+        le_(le),
+        ab1_(kb_ab(1)),
+        abn_(kb_ab(4 * shininess)),
+        n4_(4 * shininess) {
+    if (kind == Kind::kb_decompose) {
+      diff_d_ = kb::decompose(n1_, n2_, le.l1, le.l2);
+      spec_d_ = kb::decompose(n1_, n2_, le.h1, le.h2);
+    } else if (kind == Kind::kb_one_vector) {
+      diff_a_ = kb::one_vector(n1_, n2_, le.l1, le.l2);
+      spec_a_ = kb::one_vector(n1_, n2_, le.h1, le.h2);
+    }
+  }
+
+  [[nodiscard]] Amounts at(double t) const {
+    switch (kind_) {
+      case Kind::kb_exact:
+        return {exact(le_.l1, le_.l2, ab1_, t), exact(le_.h1, le_.h2, abn_, t)};
+      case Kind::kb_decompose:
+        return {decomposed(diff_d_, ab1_, t), decomposed(spec_d_, abn_, t)};
+      default:
+        return {one(diff_a_, ab1_, 1, t), one(spec_a_, abn_, n4_, t)};
+    }
+  }
+
+ private:
+  [[nodiscard]] double exact(Vec3 v1, Vec3 v2, const kb::QuadParams& ab, double t) const {
+    return kb::quad(std::acos(std::clamp(kb::cos_exact(n1_, n2_, v1, v2, t), -1.0, 1.0)), ab);
+  }
+  static double decomposed(const kb::Decomposition& d, const kb::QuadParams& ab, double t) {
+    return kb::quad(d.n.theta0 + t * d.n.dtheta, ab) * kb::quad(d.l.theta0 + t * d.l.dtheta, ab);
+  }
+  static double one(const kb::ScanlineAngles& a, const kb::QuadParams& ab, double n, double t) {
+    return std::pow(std::max(a.scale, 0.0), n) * kb::quad(a.theta0 + t * a.dtheta, ab);
+  }
+
+  Kind kind_;
+  Vec3 n1_, n2_;
+  KbLightEnds le_;
+  kb::QuadParams ab1_, abn_;
+  double n4_;
+  kb::Decomposition diff_d_, spec_d_;
+  kb::ScanlineAngles diff_a_, spec_a_;
+};
 
 // Kuijk-Blake methods in float.
 Image kb_float(const Method& m, const Frame& f) {
@@ -732,19 +776,17 @@ Image kb_float(const Method& m, const Frame& f) {
   for (std::size_t t = 0; t < visible.size(); ++t) {
     if (!visible[t]) continue;
     for (const KbEnds& e : kb_spans(f, t)) {
+      std::vector<KbLightTerms> terms;
+      for (const Light& l : f.lighting.lights) {
+        terms.emplace_back(m.kind, e, kb_light_ends(f, l, e), f.material.shininess);
+      }
       for (int x = e.x0; x <= e.x1; ++x) {
         const int o = f.owner[static_cast<std::size_t>(e.y) * f.width + x];
         if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != static_cast<int>(t)) continue;
-        const Fragment& fr = f.fragments[static_cast<std::size_t>(o)];
         const double u = e.x1 == e.x0 ? 0.0 : static_cast<double>(x - e.x0) / (e.x1 - e.x0);
-        for (std::size_t k = 0; k < a.size(); ++k) {
-          const Light& l = f.lighting.lights[k];
-          const Vec3 l1 = Lighting::l_at(l, e.p1), l2 = Lighting::l_at(l, e.p2);
-          const Vec3 h1 = normalized(l1 + f.lighting.v_at(e.p1));
-          const Vec3 h2 = normalized(l2 + f.lighting.v_at(e.p2));
-          a[k] = kb_amounts(m.kind, e.n1, e.n2, l1, l2, h1, h2, u, fr.shininess);
-        }
-        img.at(x, e.y) = to_rgb8(combine(fr, f.lighting.lights, a));
+        for (std::size_t k = 0; k < a.size(); ++k) a[k] = terms[k].at(u);
+        img.at(x, e.y) =
+            to_rgb8(combine(f.fragments[static_cast<std::size_t>(o)], f.lighting.lights, a));
       }
     }
   }
@@ -772,16 +814,20 @@ Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::s
     for (const KbEnds& e : kb_spans(f, t)) {
       const int length = e.x1 - e.x0 + 1;
       const double per_pixel = length == 1 ? 0.0 : 1.0 / (length - 1);
+      // Per light: the diffuse and specular one-vector angles (the same for every channel).
+      std::vector<std::pair<kb::ScanlineAngles, kb::ScanlineAngles>> angles;
+      for (const Light& l : f.lighting.lights) {
+        const KbLightEnds le = kb_light_ends(f, l, e);
+        angles.emplace_back(kb::one_vector(e.n1, e.n2, le.l1, le.l2),
+                            kb::one_vector(e.n1, e.n2, le.h1, le.h2));
+      }
       for (int ch = 0; ch < 3; ++ch) {
         KbSpan span;
         span.length = length;
         span.terms.push_back({0, 0, ab1, channel(f.material.ambient, ch) * top});
-        for (const Light& l : f.lighting.lights) {
-          const Vec3 l1 = Lighting::l_at(l, e.p1), l2 = Lighting::l_at(l, e.p2);
-          const Vec3 h1 = normalized(l1 + f.lighting.v_at(e.p1));
-          const Vec3 h2 = normalized(l2 + f.lighting.v_at(e.p2));
-          const kb::ScanlineAngles d = kb::one_vector(e.n1, e.n2, l1, l2);
-          const kb::ScanlineAngles s = kb::one_vector(e.n1, e.n2, h1, h2);
+        for (std::size_t k = 0; k < angles.size(); ++k) {
+          const Light& l = f.lighting.lights[k];
+          const auto& [d, s] = angles[k];
           const double lc = channel(l.colour, ch) * top;
           span.terms.push_back({d.theta0, d.dtheta * per_pixel, ab1,
                                 lc * channel(f.material.diffuse, ch) * std::max(d.scale, 0.0)});

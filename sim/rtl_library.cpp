@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "model/error.h"
+#include "sim/file_util.h"
 #include "sim/process.h"
 
 namespace phongsim {
@@ -26,30 +27,6 @@ constexpr const char* kPython = PHONGSIM_PYTHON;
 constexpr const char* kCmake = PHONGSIM_CMAKE;
 constexpr const char* kCxxCompiler = PHONGSIM_CXX_COMPILER;
 
-// FNV-1a, 64 bit: a cache key, not a security boundary.
-class Hash {
- public:
-  void add(std::string_view bytes) {
-    for (const unsigned char c : bytes) {
-      h_ ^= c;
-      h_ *= 0x100000001b3ULL;
-    }
-    h_ ^= 0xff;  // field separator, so ("ab","c") and ("a","bc") differ
-    h_ *= 0x100000001b3ULL;
-  }
-  [[nodiscard]] std::string hex() const { return fmt::format("{:016x}", h_); }
-
- private:
-  std::uint64_t h_ = 0xcbf29ce484222325ULL;
-};
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string tool_version(const std::vector<std::string>& argv) {
   const auto r = run_process(argv);
   if (r.exit_code != 0) throw Error(fmt::format("cannot run '{}': is it installed?", argv[0]));
@@ -58,7 +35,7 @@ std::string tool_version(const std::vector<std::string>& argv) {
 
 // Everything a plugin's bits depend on besides the -G parameters.
 std::string cache_key(const std::string& pipeline, const std::string& gflags) {
-  Hash h;
+  ContentHash h;
   h.add(fmt::format("abi {}", kRtlPluginAbi));
   h.add(pipeline);
   h.add(gflags);

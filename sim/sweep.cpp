@@ -19,6 +19,7 @@
 #include "model/lirp.h"
 #include "model/lyon.h"
 #include "model/quad.h"
+#include "sim/file_util.h"
 #include "sim/image.h"
 #include "sim/kb_stimulus.h"
 #include "sim/lyon_analysis.h"
@@ -551,10 +552,7 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
   for (const SweepPoint& p : points) {
     // The plan in `out` must be this sweep's: same point files, results made from them.
     const fs::path pp = point_path(out, p.index);
-    std::ifstream planned(pp);
-    const std::string planned_toml((std::istreambuf_iterator<char>(planned)),
-                                   std::istreambuf_iterator<char>());
-    if (planned_toml != p.toml) {
+    if (read_file(pp) != p.toml) {
       throw Error(
           fmt::format("{} is not point {} of {} ({}): plan the sweep again into an empty "
                       "directory",

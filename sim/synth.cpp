@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "model/error.h"
+#include "sim/file_util.h"
 #include "sim/process.h"
 #include "sim/rtl_library.h"
 
@@ -34,30 +35,6 @@ constexpr const char* kCmake = PHONGSIM_CMAKE;
 // (the wrapper, what is counted, how results are parsed).
 constexpr const char* kFlowVersion = "phongsim synth flow 1";
 constexpr const char* kWrapTop = "phongsim_synth_wrap";
-
-// FNV-1a, 64 bit: a cache key, not a security boundary (as sim/rtl_library.cpp).
-class Hash {
- public:
-  void add(std::string_view bytes) {
-    for (const unsigned char c : bytes) {
-      h_ ^= c;
-      h_ *= 0x100000001b3ULL;
-    }
-    h_ ^= 0xff;  // field separator
-    h_ *= 0x100000001b3ULL;
-  }
-  [[nodiscard]] std::string hex() const { return fmt::format("{:016x}", h_); }
-
- private:
-  std::uint64_t h_ = 0xcbf29ce484222325ULL;
-};
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string trim(std::string_view s) {
   const auto b = s.find_first_not_of(" \t\r\n");
@@ -491,7 +468,7 @@ SynthResult synthesize(const Config& cfg, const SynthOptions& options, std::FILE
   TempDir tmp;
   const RtlSources src = rtl_sources(cfg.pipeline(), tmp.path());
 
-  Hash h;
+  ContentHash h;
   h.add(kFlowVersion);
   h.add(cfg.pipeline());
   h.add(src.top);
