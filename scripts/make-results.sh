@@ -21,6 +21,27 @@ render() {  # render NAME ARGS...: keep the grid, the scanline plot and the metr
   echo "$name: phongsim render $*"
 }
 
+# Vlasic's Table 6.1 layout from the metrics CSVs of the renders NAME...: one row per render,
+# one column per method (colour correctness).
+pivot() {
+  local header=1 name
+  for name in "$@"; do
+    awk -F, -v name="$name" -v header=$header '
+      NR > 1 { m[NR - 1] = $1; c[NR - 1] = sprintf("%.4f", $3); n = NR - 1 }
+      END {
+        if (header) {
+          h = "| render |"; r = "|---|"
+          for (i = 1; i <= n; i++) { h = h " " m[i] " |"; r = r "---|" }
+          print h; print r
+        }
+        l = "| " name " |"
+        for (i = 1; i <= n; i++) l = l " " c[i] " |"
+        print l
+      }' "$work/$name/"*_metrics.csv
+    header=0
+  done
+}
+
 render shinyballs --scene shinyballs
 render triangle --scene triangle --method flat,gouraud,gouraud4,quadratic,lyon-k2,kb-onevec
 render teapot --scene teapot --method flat,gouraud,gouraud4,quadratic,lyon-k2,kb-onevec
@@ -29,3 +50,15 @@ render kbsphere512 --scene kbsphere512 --method gouraud,kb-exact,kb-decomp,kb-on
 render machband --scene "$root/data/scenes/kbsphere512-diffuse.toml" --method kb-exact,kb-onevec
 render dodecahedron --scene dodecahedron --method gouraud,gouraud4,quadratic,kb-onevec
 render sphere40 --scene sphere40 --method gouraud,gouraud4,quadratic,kb-onevec
+
+# Every seed method side by side (docs/methods.md), full colour against Phong and, as Vlasic's
+# Table 6.1 compares them, specular only against Phong shading with Blinn's model.
+seed_methods=gouraud,gouraud4,quadratic,env-map,blinn-map,quad-blinn-map,fast-phong,fence,highlight-track
+for scene in triangle teapot; do
+  render "methods-$scene" --scene $scene --method $seed_methods
+  render "methods-$scene-specular" --scene $scene --method $seed_methods --terms specular \
+    --reference blinn
+done
+pivot methods-triangle methods-teapot methods-triangle-specular methods-teapot-specular \
+  >"$out/methods-table.md"
+echo "methods-table: colour correctness of each render above, one row each"

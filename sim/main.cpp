@@ -194,6 +194,8 @@ RenderProgress render_progress(bool quiet) {
 struct RenderCli {
   RenderOptions options;
   std::string backend = "auto";
+  std::string terms = "all";
+  std::string texture_filter = "bilinear";
   std::string out_dir = "render";
   std::string json;
   bool quiet = false;
@@ -201,13 +203,15 @@ struct RenderCli {
 
 int cmd_render(RenderCli c) {
   c.options.backend = parse_backend(c.backend);
+  c.options.terms = parse_terms(c.terms);
+  c.options.texture_filter = texmap::parse_filter(c.texture_filter);
   std::optional<OutputFile> json;
   if (!c.json.empty()) json.emplace(c.json);  // unwritable: fail before rendering
   const RenderResult r = render(c.options, render_progress(c.quiet));
   const auto files = write_render_outputs(r, c.out_dir);
-  fmt::print("{}: {} x {} pixels ({} object pixels), reference {} (float)\n{}", r.scene,
+  fmt::print("{}: {} x {} pixels ({} object pixels), reference {} (float){}\n{}", r.scene,
              r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
-             r.reference.method, metrics_markdown(r));
+             r.reference.method, r.settings, metrics_markdown(r));
   fmt::print("wrote {} files to {} (grid: {})\n", files.size(), c.out_dir,
              (fs::path(c.out_dir) / (r.scene + "_grid.png")).string());
   if (json) {
@@ -215,6 +219,9 @@ int cmd_render(RenderCli c) {
                      {"width", r.reference.image.width()},
                      {"height", r.reference.image.height()},
                      {"reference", r.reference.method},
+                     {"terms", terms_name(c.options.terms)},
+                     {"texture_size", c.options.texture_size},
+                     {"texture_filter", texmap::filter_name(c.options.texture_filter)},
                      {"files", nlohmann::json::array()},
                      {"methods", nlohmann::json::array()}};
     for (const auto& f : files) j["files"].push_back(f.string());
@@ -227,7 +234,8 @@ int cmd_render(RenderCli c) {
             std::isinf(m.metrics.psnr) ? nlohmann::json(nullptr) : nlohmann::json(m.metrics.psnr)},
            {"max_error", m.metrics.max_error},
            {"pixels", m.metrics.pixels},
-           {"seconds", m.seconds}});
+           {"seconds", m.seconds},
+           {"cpu_seconds", m.cpu_seconds}});
     }
     std::fputs((j.dump(2) + "\n").c_str(), json->get());
     json->commit();
@@ -362,8 +370,64 @@ int bench_render(int radius) {
   return 0;
 }
 
-int cmd_bench(const Target& t, std::uint64_t vectors, int render_radius) {
+// `phongsim bench methods`: the CPU time of each method's float shading pass on one scene
+// (rasterization and visibility are shared and not timed), the median of `rounds` interleaved
+// rounds, and its ratios to Gouraud's and to Phong's, like Lai and Tai's Table 1 (seed 003).
+struct MethodsBench {
+  std::string scene = "teapot";
+  std::vector<std::string> methods{"gouraud", "phong", "fast-phong", "highlight-track", "fence"};
+  int rounds = 9;
+  int size = 0;
+  int teapot_resolution = 0;
+};
+
+int bench_methods(const MethodsBench& b) {
+  if (b.rounds < 1 || b.rounds > 1000) {
+    throw Error(fmt::format("--rounds {} is out of range (1..1000)", b.rounds));
+  }
+  RenderOptions o;
+  o.scene = b.scene;
+  o.methods = b.methods;
+  const bool all = o.methods.size() == 1 && o.methods.front() == "all";
+  for (const char* needed : {"phong", "gouraud"}) {  // the two ratios' denominators
+    if (!all && std::find(o.methods.begin(), o.methods.end(), needed) == o.methods.end()) {
+      o.methods.insert(o.methods.begin(), needed);
+    }
+  }
+  o.backend = Backend::float_ref;
+  o.repeats = b.rounds;
+  o.size = b.size;
+  o.teapot_resolution = b.teapot_resolution;
+  const RenderResult r = render(o, [](std::string_view, auto, auto) {});
+  const auto cpu_of = [&](std::string_view name) {
+    for (const MethodResult& m : r.results) {
+      if (m.method == name) return m.cpu_seconds;
+    }
+    return 0.0;
+  };
+  const double gouraud = cpu_of("gouraud"), phong = cpu_of("phong");
+  if (!(gouraud > 0) || !(phong > 0)) {
+    throw Error(
+        "bench methods: the Gouraud or Phong pass took no measurable CPU time "
+        "(use a larger --size)");
+  }
+  fmt::print(
+      "bench methods: {} ({} x {} pixels, {} object pixels), float, CPU time of the shading "
+      "pass, median of {} rounds\n\n"
+      "| method | CPU time (s) | Gouraud ratio | Phong ratio |\n|---|---|---|---|\n",
+      r.scene, r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
+      b.rounds);
+  for (const MethodResult& m : r.results) {
+    fmt::print("| {} | {:.4f} | {:.4f} | {:.4f} |\n", m.method, m.cpu_seconds,
+               m.cpu_seconds / gouraud, m.cpu_seconds / phong);
+  }
+  return 0;
+}
+
+int cmd_bench(const Target& t, std::uint64_t vectors, int render_radius,
+              const MethodsBench& methods) {
   if (t.pipeline == "render" && t.config.empty()) return bench_render(render_radius);
+  if (t.pipeline == "methods" && t.config.empty()) return bench_methods(methods);
   const Loaded l = load(t);
   const DutFactory make_dut = rtl_factory(l, t);
   const BenchReport r = bench(*l.pipeline, l.cfg, *l.model, make_dut, vectors);
@@ -651,7 +715,10 @@ int main(int argc, char** argv) {
   Target bench_target;
   std::uint64_t bench_vectors = 200000;
   auto* bench_cmd =
-      app.add_subcommand("bench", "Vectors per second: model, Verilated RTL, co-simulation");
+      app.add_subcommand("bench",
+                         "Vectors per second: model, Verilated RTL, co-simulation (a pipeline); "
+                         "render: pixels per second per backend; methods: CPU time per shading "
+                         "method");
   bench_target.add_options(*bench_cmd);
   bench_cmd->add_option("--vectors", bench_vectors, "vectors per measurement")
       ->capture_default_str();
@@ -660,8 +727,29 @@ int main(int argc, char** argv) {
       ->add_option("--radius", bench_radius,
                    "bench render: shinyballs sphere radius (85: a 511-pixel-wide strip)")
       ->capture_default_str();
-  bench_cmd->callback(
-      [&]() { action = [&]() { return cmd_bench(bench_target, bench_vectors, bench_radius); }; });
+  MethodsBench bench_methods_options;
+  bench_cmd
+      ->add_option("--scene", bench_methods_options.scene,
+                   "bench methods: the scene (as phongsim render --scene)")
+      ->capture_default_str();
+  bench_cmd
+      ->add_option("--method", bench_methods_options.methods,
+                   "bench methods: the methods (gouraud and phong are added if missing)")
+      ->delimiter(',')
+      ->capture_default_str();
+  bench_cmd
+      ->add_option("--rounds", bench_methods_options.rounds,
+                   "bench methods: interleaved rounds (the median is printed)")
+      ->capture_default_str();
+  bench_cmd->add_option("--size", bench_methods_options.size,
+                        "bench methods: image width (as phongsim render --size)");
+  bench_cmd->add_option("--teapot-resolution", bench_methods_options.teapot_resolution,
+                        "bench methods: as phongsim render --teapot-resolution");
+  bench_cmd->callback([&]() {
+    action = [&]() {
+      return cmd_bench(bench_target, bench_vectors, bench_radius, bench_methods_options);
+    };
+  });
 
   // sweep
   std::string sweep_action, sweep_file, sweep_out = "sweep-out", sweep_of, sweep_write;
@@ -707,8 +795,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   render_cmd
       ->add_option("--method", render_cli.options.methods,
-                   "method(s), one grid row each (default: the scene's list; "
-                   "`phongsim render --list-methods`)")
+                   "method(s), one grid row each (default: the scene's list; all: every "
+                   "method the scene and backend can use; `phongsim render --list-methods`)")
       ->delimiter(',');
   render_cmd
       ->add_option("--backend", render_cli.backend,
@@ -726,6 +814,18 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--unit-config", render_cli.options.unit_config,
                          "a configuration file replacing the built-in one of every unit method "
                          "of its pipeline");
+  render_cmd
+      ->add_option("--terms", render_cli.terms,
+                   "lighting terms: all, or specular only (Vlasic's Table 6.1 compares those)")
+      ->capture_default_str();
+  render_cmd
+      ->add_option("--texture-size", render_cli.options.texture_size,
+                   "texture methods: texels per side (0: the exact texture function)")
+      ->capture_default_str();
+  render_cmd
+      ->add_option("--texture-filter", render_cli.texture_filter,
+                   "texture methods: nearest or bilinear")
+      ->capture_default_str();
   render_cmd->add_option("--out", render_cli.out_dir, "output directory")->capture_default_str();
   render_cmd->add_option("--json", render_cli.json, "write a JSON summary here");
   render_cmd->add_flag("--no-build", render_cli.options.no_build,

@@ -1048,13 +1048,19 @@ Mesh read_mesh(const fs::path& path) {
   fail_file(path, "unknown mesh format (expected .obj, .ply or .bpt)");
 }
 
+Box bounding_box(const Mesh& m) {
+  if (m.positions.empty()) throw Error("an empty mesh has no bounding box");
+  Box b{m.positions[0], m.positions[0]};
+  for (const Vec3& p : m.positions) {
+    b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
+    b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
+  }
+  return b;
+}
+
 void normalize_to_unit_box(Mesh& m) {
   if (m.positions.empty()) throw Error("cannot normalize an empty mesh");
-  Vec3 lo = m.positions[0], hi = m.positions[0];
-  for (const Vec3& p : m.positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
+  const auto [lo, hi] = bounding_box(m);
   const Vec3 extent = hi - lo;
   const double largest = std::max({extent.x, extent.y, extent.z});
   if (!(largest > 0)) throw Error("cannot normalize a mesh of zero extent");

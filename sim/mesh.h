@@ -134,6 +134,12 @@ inline constexpr int kTeapotDefaultResolution = 8;
 // kTeapotDefaultResolution. Error otherwise.
 [[nodiscard]] Mesh read_mesh(const std::filesystem::path& path);
 
+// The axis-aligned bounding box of the positions. Error for an empty mesh.
+struct Box {
+  Vec3 lo, hi;
+};
+[[nodiscard]] Box bounding_box(const Mesh& m);
+
 // Moves the bounding box's centre to the origin and scales uniformly so the largest extent is 2
 // (the mesh fits [-1, 1]³). Normals are unchanged. Error for a mesh of zero extent.
 void normalize_to_unit_box(Mesh& m);

@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <map>
 #include <memory>
 
 #include "model/config.h"
 #include "model/error.h"
+#include "model/fast_phong.h"
+#include "model/highlight_track.h"
 #include "model/kb.h"
 #include "model/kb_float.h"
 #include "model/kb_setup.h"
@@ -19,6 +22,7 @@
 #include "model/quad.h"
 #include "model/quad_float.h"
 #include "model/quad_setup.h"
+#include "model/texture_maps.h"
 #include "sim/harness.h"
 #include "sim/output_file.h"
 #include "sim/pipelines.h"
@@ -43,7 +47,13 @@ enum class Kind {
   pixel,
   kb_exact,
   kb_decompose,
-  kb_one_vector
+  kb_one_vector,
+  env_map,
+  blinn_map,
+  quad_blinn_map,
+  fast_phong,
+  fence,
+  highlight_track
 };
 
 struct Method {
@@ -130,6 +140,25 @@ const std::vector<Method>& methods() {
         "Kuijk-Blake eq. 4: one linear angle per span, quadratic cos^n (unit: kb engine)",
         "kb/default", true},
        Kind::kb_one_vector},
+      {{"env-map",
+        "Vlasic 5.1: spherical environment map of the lights (eqs. 5.1-5.3), coordinates "
+        "linear; diffuse Gouraud",
+        "", true},
+       Kind::env_map},
+      {{"blinn-map",
+        "Vlasic 5.2: diffuse and specular Blinn textures (eqs. 5.4-5.7), coordinates linear", "",
+        true},
+       Kind::blinn_map},
+      {{"quad-blinn-map", "Vlasic 5.3: Blinn map, coordinates quadratic from six points", "", true},
+       Kind::quad_blinn_map},
+      {{"fast-phong", "Bishop-Weimer: N.L and N.H by 2nd-order Taylor expansion about the centroid",
+        "", true},
+       Kind::fast_phong},
+      {{"fence", "Lai-Tai: Phong at each span's end pixels, intensity linear between", "", true},
+       Kind::fence},
+      {{"highlight-track",
+        "Lai-Tai: Fence plus Phong on each light's highlight track, piecewise linear", "", true},
+       Kind::highlight_track},
       {{"torrance-sparrow", "exp(-(4n/2) acos(H*.N)^2), Blinn's D2 (row 11)", "", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::torrance_sparrow, n, l, v, s); }},
@@ -257,7 +286,9 @@ struct Frame {
   int width = 0, height = 0;
   Rgb8 background;
   std::vector<Fragment> fragments;
-  std::vector<int> owner;  // per pixel: fragment index or -1
+  std::vector<int> owner;     // per pixel: fragment index or -1
+  std::vector<int> seen;      // per pixel: the triangle visible there or -1 (mesh scenes)
+  std::vector<bool> visible;  // per triangle: visible at some pixel (mesh scenes)
   Lighting lighting;
   bool mesh = false;
   Mesh geometry;                          // world positions and normals
@@ -267,6 +298,16 @@ struct Frame {
   std::vector<std::vector<std::pair<int, int>>> coverage;
   Material material;
   std::vector<std::pair<std::string, std::vector<bool>>> regions;  // RenderResult::regions
+
+  // Whether triangle t is the surface visible at pixel (x, y) (a compact array: the scanline
+  // methods ask for every pixel of their spans).
+  [[nodiscard]] bool shows(std::size_t t, int x, int y) const {
+    return seen[static_cast<std::size_t>(y) * width + x] == static_cast<int>(t);
+  }
+  // The camera's right and up axes in world space (with lighting.view_dir: eye coordinates x,
+  // y, z), and the mesh's bounding-box centre (where the environment map is seen from).
+  Vec3 cam_right{1, 0, 0}, cam_up{0, 1, 0};
+  Vec3 centre;
 };
 
 // Lyon's specular.m (seed 002, appendix): spheres of radius m pixels for n = 1, 4, 16, 64, 256,
@@ -348,6 +389,10 @@ Frame mesh_frame(const Scene& sc, int width_override) {
   f.lighting.view_at_infinity = ortho;
   f.lighting.view_dir = w;
   f.lighting.eye = cam.eye;
+  f.cam_right = u;
+  f.cam_up = v;
+  const Box box = bounding_box(sc.mesh);
+  f.centre = (box.lo + box.hi) * 0.5;
   const double half_h = f.height / 2.0;
   const double focal = ortho ? half_h / (cam.ortho_height / 2)
                              : half_h / std::tan(cam.fov_deg * 3.14159265358979323846 / 360);
@@ -405,6 +450,12 @@ Frame mesh_frame(const Scene& sc, int width_override) {
     }
   }
   f.owner.assign(zbuf.size(), -1);
+  f.seen.resize(zbuf.size());
+  f.visible.resize(sc.mesh.triangles.size());
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    f.seen[i] = hits[i].tri;
+    if (hits[i].tri >= 0) f.visible[static_cast<std::size_t>(hits[i].tri)] = true;
+  }
   for (int y = 0; y < f.height; ++y) {
     for (int x = 0; x < f.width; ++x) {
       const std::size_t at = static_cast<std::size_t>(y) * f.width + x;
@@ -451,21 +502,25 @@ Vec3 combine(const Fragment& fr, const std::vector<Light>& lights,
   return c;
 }
 
-// Float evaluation of a method's lighting at a point with unit normal n.
+// Float evaluation of a method's lighting at a point with unit normal n: combine() with the
+// amounts of each light, summed in the same order (no allocation: this is the per-pixel path
+// of the Phong reference that `phongsim bench methods` times).
 Vec3 shade_float(const Method& m, const Frame& f, const Fragment& fr, Vec3 n, Vec3 p) {
-  std::vector<Amounts> a;
   const Vec3 v = f.lighting.v_at(p);
   const auto spec = m.spec != nullptr ? m.spec : phong().spec;  // vertex methods light by Phong
+  Vec3 c = fr.ka;
   for (const Light& l : f.lighting.lights) {
     const Vec3 ld = Lighting::l_at(l, p);
-    a.push_back({std::max(0.0, dot(n, ld)), spec(n, ld, v, fr.shininess)});
+    c = c + mul(l.colour, fr.kd * std::max(0.0, dot(n, ld)) + fr.ks * spec(n, ld, v, fr.shininess));
   }
-  return combine(fr, f.lighting.lights, a);
+  return c;
 }
 
 Rgb8 to_rgb8(Vec3 c) {
+  // Round half up; x + 0.5 truncated is llround for the non-negative values here (and a third
+  // of the cost of the three calls per pixel).
   const auto byte = [](double x) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255));
+    return static_cast<std::uint8_t>(std::clamp(x, 0.0, 1.0) * 255 + 0.5);
   };
   return {byte(c.x), byte(c.y), byte(c.z)};
 }
@@ -530,41 +585,85 @@ Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
   return img;
 }
 
-// The lighting at the six sample points of triangle t (eq. 4.2 order), clamped to [0, 1]: the
-// colours the vertex methods interpolate (Vlasic §4.3 step 1: sample normals normalized).
-std::array<Vec3, 6> samples(const Frame& f, int t) {
+// The six sample points of triangle t in eq. 4.2 order: positions (vertices and edge
+// midpoints) and unit normals (Vlasic §4.3 step 1: midpoint normals are the normalized
+// bisectors of their vertices' normals).
+struct SamplePoints {
+  std::array<Vec3, 6> p, n;
+};
+// With midpoints false only the vertices (samples 0, 2, 4) are filled in.
+SamplePoints sample_points(const Frame& f, int t, bool midpoints = true) {
   const auto& idx = f.geometry.triangles[static_cast<std::size_t>(t)];
   const Vec3 p[3] = {f.geometry.positions[idx[0]], f.geometry.positions[idx[1]],
                      f.geometry.positions[idx[2]]};
-  const auto normals = quad::sample_normals(f.geometry.normals[idx[0]], f.geometry.normals[idx[1]],
-                                            f.geometry.normals[idx[2]]);
-  const std::array<Vec3, 6> pos{p[0], (p[0] + p[1]) * 0.5, p[1], (p[1] + p[2]) * 0.5,
-                                p[2], (p[2] + p[0]) * 0.5};
+  const Vec3 n[3] = {f.geometry.normals[idx[0]], f.geometry.normals[idx[1]],
+                     f.geometry.normals[idx[2]]};
+  if (!midpoints) {
+    return {{p[0], {}, p[1], {}, p[2], {}},
+            {normalized(n[0]), {}, normalized(n[1]), {}, normalized(n[2]), {}}};
+  }
+  return {{p[0], (p[0] + p[1]) * 0.5, p[1], (p[1] + p[2]) * 0.5, p[2], (p[2] + p[0]) * 0.5},
+          quad::sample_normals(n[0], n[1], n[2])};
+}
+
+// A fragment that carries only the frame's material: for lighting points that are not the
+// visible pixels (samples, span ends, track points).
+Fragment material_fragment(const Frame& f) {
   Fragment fr;
   fr.shininess = f.material.shininess;
   fr.kd = f.material.diffuse;
   fr.ks = f.material.specular;
   fr.ka = f.material.ambient;
+  return fr;
+}
+
+// The lighting at the six sample points of triangle t, clamped to [0, 1]: the colours the
+// vertex methods interpolate.
+std::array<Vec3, 6> samples(const Frame& f, int t) {
+  const SamplePoints sp = sample_points(f, t);
+  const Fragment fr = material_fragment(f);
   std::array<Vec3, 6> c;
-  for (int k = 0; k < 6; ++k) c[k] = clamp01(shade_float(phong(), f, fr, normals[k], pos[k]));
+  for (int k = 0; k < 6; ++k) c[k] = clamp01(shade_float(phong(), f, fr, sp.n[k], sp.p[k]));
   return c;
 }
 
 double channel(Vec3 c, int ch) { return ch == 0 ? c.x : (ch == 1 ? c.y : c.z); }
 
 // Vertex methods (flat, Gouraud, subdivided Gouraud, quadratic) in float.
+// Each lighting evaluation is done once: flat per triangle, Gouraud per mesh vertex (shared
+// by its triangles, as a renderer lights vertices), the others per triangle's six samples.
 Image vertex_float(const Method& m, const Frame& f) {
+  const Fragment material = material_fragment(f);
   std::vector<std::array<Vec3, 6>> cache(f.geometry.triangles.size());
   std::vector<bool> done(cache.size());
+  std::vector<Vec3> vertex(f.geometry.positions.size());
+  std::vector<bool> vertex_done(vertex.size());
   Image img = blank(f);
   for (const Fragment& fr : f.fragments) {
     const auto t = static_cast<std::size_t>(fr.tri);
+    const auto& idx = f.geometry.triangles[t];
     if (m.kind == Kind::flat) {
-      const auto& idx = f.geometry.triangles[t];
-      const Vec3 a = f.geometry.positions[idx[0]], b = f.geometry.positions[idx[1]],
-                 c = f.geometry.positions[idx[2]];
-      const Vec3 n = normalized(cross(b - a, c - a));
-      img.at(fr.x, fr.y) = to_rgb8(shade_float(phong(), f, fr, n, (a + b + c) * (1.0 / 3)));
+      if (!done[t]) {
+        const Vec3 a = f.geometry.positions[idx[0]], b = f.geometry.positions[idx[1]],
+                   c = f.geometry.positions[idx[2]];
+        const Vec3 n = normalized(cross(b - a, c - a));
+        cache[t][0] = shade_float(phong(), f, material, n, (a + b + c) * (1.0 / 3));
+        done[t] = true;
+      }
+      img.at(fr.x, fr.y) = to_rgb8(cache[t][0]);
+      continue;
+    }
+    const double s = fr.st.s, tt = fr.st.t;
+    if (m.kind == Kind::gouraud) {
+      for (const int i : idx) {
+        const auto k = static_cast<std::size_t>(i);
+        if (vertex_done[k]) continue;
+        vertex[k] = clamp01(shade_float(phong(), f, material, normalized(f.geometry.normals[k]),
+                                        f.geometry.positions[k]));
+        vertex_done[k] = true;
+      }
+      img.at(fr.x, fr.y) =
+          to_rgb8((1 - s - tt) * vertex[idx[0]] + s * vertex[idx[1]] + tt * vertex[idx[2]]);
       continue;
     }
     if (!done[t]) {
@@ -572,11 +671,8 @@ Image vertex_float(const Method& m, const Frame& f) {
       done[t] = true;
     }
     const auto& c = cache[t];
-    const double s = fr.st.s, tt = fr.st.t;
     Vec3 col;
-    if (m.kind == Kind::gouraud) {
-      col = (1 - s - tt) * c[0] + s * c[2] + tt * c[4];
-    } else if (m.kind == Kind::gouraud4) {
+    if (m.kind == Kind::gouraud4) {
       // Sub-triangles of the midpoint split, each interpolated linearly in (s, t).
       if (s >= 0.5) {
         // corner v1: vertices m01 (s=.5,t=0), v1 (1,0), m12 (.5,.5)
@@ -619,8 +715,7 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
   // The framebuffer's 255 means 1.0, the unit's largest output (255/256 for 0.8) does: colours
   // go in scaled by that top value, so the output's raw bits are the framebuffer value.
   const double top = fx::to_real(qf.out.max_raw(), qf.out);
-  std::vector<bool> visible(f.geometry.triangles.size());
-  for (const Fragment& fr : f.fragments) visible[static_cast<std::size_t>(fr.tri)] = true;
+  const std::vector<bool>& visible = f.visible;
   std::vector<std::int64_t> words;
   std::vector<int> tris;
   std::vector<std::size_t> counts;
@@ -655,8 +750,7 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
       const auto x = static_cast<int>(out[at]);
       const auto y = static_cast<int>(out[at + 1]);
       if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
-      const int o = f.owner[static_cast<std::size_t>(y) * f.width + x];
-      if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != tris[k]) continue;
+      if (!f.shows(static_cast<std::size_t>(tris[k]), x, y)) continue;
       const double full = static_cast<double>(qf.out.max_raw());
       img.at(x, y) =
           to_rgb8({static_cast<double>(out[at + 2]) / full, static_cast<double>(out[at + 3]) / full,
@@ -666,39 +760,60 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
   return img;
 }
 
-// ---- Kuijk-Blake angular interpolation (seed 001, section 1.2) ----
-// Per triangle and row: the span of the triangle's covered pixels; N (normalized barycentric
-// interpolation), the light direction L and the halfway vector H = (L + V)/|L + V| at the two end
-// pixels' centres; along the span N, L, H rotate at constant rates (t = 0 .. 1). Diffuse
-// cos α(N, L) and specular cos^n β(N, H) through the three-piece quadratic (n for the diffuse
-// term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's specfuns.m).
+// ---- Spans: each triangle's covered pixels row by row (the scanline methods) ----
 
-struct KbEnds {
-  int y = 0, x0 = 0, x1 = 0;  // span x0..x1 of row y
-  Vec3 n1, n2, p1, p2;
+// Triangle t's surface at pixel (x, y)'s centre: the interpolated normal (not normalized) and
+// position, computed exactly as the fragments' (mesh_frame).
+struct Surface {
+  Vec3 n, p;
+};
+Surface surface_at(const Frame& f, std::size_t t, const std::array<quad::Vertex2, 3>& pv, int x,
+                   int y) {
+  const auto& idx = f.geometry.triangles[t];
+  const quad::St st = quad::st_at(pv[0], pv[1], pv[2], {x + 0.5, y + 0.5});
+  const auto at = [&](const std::vector<Vec3>& a) {
+    return (1 - st.s - st.t) * a[idx[0]] + st.s * a[idx[1]] + st.t * a[idx[2]];
+  };
+  return {at(f.geometry.normals), at(f.geometry.positions)};
+}
+
+struct Span {
+  int y = 0, x0 = 0, x1 = 0;  // pixels x0..x1 of row y
+  Surface s1, s2;             // at the end pixels
+  Vec3 n1, n2;                // their normals normalized
 };
 
-// Spans of triangle t in row order.
-std::vector<KbEnds> kb_spans(const Frame& f, std::size_t t) {
-  const auto& idx = f.geometry.triangles[t];
-  const auto pv = quad::to_pixels(f.screen[t]);
-  std::vector<KbEnds> spans;
-  for (const auto& [x, y] : f.coverage[t]) {
+// Spans of triangle t in row order: from the first to the last covered pixel of each row.
+std::vector<Span> spans_of(const Frame& f, std::size_t t) {
+  std::vector<Span> spans;
+  const auto& cov = f.coverage[t];
+  if (!cov.empty())
+    spans.reserve(static_cast<std::size_t>(cov.back().second - cov.front().second + 1));
+  for (const auto& [x, y] : cov) {
     if (spans.empty() || spans.back().y != y) spans.push_back({y, x, x, {}, {}, {}, {}});
     spans.back().x1 = x;
   }
-  for (KbEnds& e : spans) {
-    const auto at = [&](int x, const std::vector<Vec3>& a) {
-      const quad::St st = quad::st_at(pv[0], pv[1], pv[2], {x + 0.5, e.y + 0.5});
-      return (1 - st.s - st.t) * a[idx[0]] + st.s * a[idx[1]] + st.t * a[idx[2]];
-    };
-    e.n1 = normalized(at(e.x0, f.geometry.normals));
-    e.n2 = normalized(at(e.x1, f.geometry.normals));
-    e.p1 = at(e.x0, f.geometry.positions);
-    e.p2 = at(e.x1, f.geometry.positions);
+  const auto pv = quad::to_pixels(f.screen[t]);
+  const auto end = [&](int x, int y) {  // the fragment's, when the triangle is visible there
+    if (!f.shows(t, x, y)) return surface_at(f, t, pv, x, y);
+    const Fragment& fr =
+        f.fragments[static_cast<std::size_t>(f.owner[static_cast<std::size_t>(y) * f.width + x])];
+    return Surface{fr.n, fr.p};
+  };
+  for (Span& e : spans) {
+    e.s1 = end(e.x0, e.y);
+    e.s2 = end(e.x1, e.y);
+    e.n1 = normalized(e.s1.n);
+    e.n2 = normalized(e.s2.n);
   }
   return spans;
 }
+
+// ---- Kuijk-Blake angular interpolation (seed 001, section 1.2) ----
+// Per span: N, the light direction L and the halfway vector H = (L + V)/|L + V| at the two end
+// pixels' centres; along the span N, L, H rotate at constant rates (t = 0 .. 1). Diffuse
+// cos α(N, L) and specular cos^n β(N, H) through the three-piece quadratic (n for the diffuse
+// term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's specfuns.m).
 
 kb::QuadParams kb_ab(double n) {
   // Our least-squares table covers Kuijk-Blake's range n = 1..125; beyond, the closed forms.
@@ -710,16 +825,17 @@ kb::QuadParams kb_ab(double n) {
 struct KbLightEnds {
   Vec3 l1, l2, h1, h2;
 };
-KbLightEnds kb_light_ends(const Frame& f, const Light& l, const KbEnds& e) {
-  const Vec3 l1 = Lighting::l_at(l, e.p1), l2 = Lighting::l_at(l, e.p2);
-  return {l1, l2, normalized(l1 + f.lighting.v_at(e.p1)), normalized(l2 + f.lighting.v_at(e.p2))};
+KbLightEnds kb_light_ends(const Frame& f, const Light& l, const Span& e) {
+  const Vec3 l1 = Lighting::l_at(l, e.s1.p), l2 = Lighting::l_at(l, e.s2.p);
+  return {l1, l2, normalized(l1 + f.lighting.v_at(e.s1.p)),
+          normalized(l2 + f.lighting.v_at(e.s2.p))};
 }
 
 // One light's diffuse (N, L) and specular (N, H) amounts along a span by the method's variant,
 // with the per-span work (the decompositions, the one-vector angles) done once.
 class KbLightTerms {
  public:
-  KbLightTerms(Kind kind, const KbEnds& e, const KbLightEnds& le, double shininess)
+  KbLightTerms(Kind kind, const Span& e, const KbLightEnds& le, double shininess)
       : kind_(kind),
         n1_(e.n1),
         n2_(e.n2),
@@ -769,13 +885,12 @@ class KbLightTerms {
 
 // Kuijk-Blake methods in float.
 Image kb_float(const Method& m, const Frame& f) {
-  std::vector<bool> visible(f.geometry.triangles.size());
-  for (const Fragment& fr : f.fragments) visible[static_cast<std::size_t>(fr.tri)] = true;
+  const std::vector<bool>& visible = f.visible;
   Image img = blank(f);
   std::vector<Amounts> a(f.lighting.lights.size());
   for (std::size_t t = 0; t < visible.size(); ++t) {
     if (!visible[t]) continue;
-    for (const KbEnds& e : kb_spans(f, t)) {
+    for (const Span& e : spans_of(f, t)) {
       std::vector<KbLightTerms> terms;
       for (const Light& l : f.lighting.lights) {
         terms.emplace_back(m.kind, e, kb_light_ends(f, l, e), f.material.shininess);
@@ -802,8 +917,7 @@ Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::s
   const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
   const double top = fx::to_real(kf.out.max_raw(), kf.out);
   const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * f.material.shininess);
-  std::vector<bool> visible(f.geometry.triangles.size());
-  for (const Fragment& fr : f.fragments) visible[static_cast<std::size_t>(fr.tri)] = true;
+  const std::vector<bool>& visible = f.visible;
   std::vector<std::int64_t> words;
   struct Placed {
     int tri, y, x0, x1;
@@ -811,7 +925,7 @@ Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::s
   std::vector<Placed> placed;
   for (std::size_t t = 0; t < visible.size(); ++t) {
     if (!visible[t]) continue;
-    for (const KbEnds& e : kb_spans(f, t)) {
+    for (const Span& e : spans_of(f, t)) {
       const int length = e.x1 - e.x0 + 1;
       const double per_pixel = length == 1 ? 0.0 : 1.0 / (length - 1);
       // Per light: the diffuse and specular one-vector angles (the same for every channel).
@@ -855,8 +969,7 @@ Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::s
     const std::size_t length = static_cast<std::size_t>(p.x1 - p.x0 + 1);
     for (std::size_t i = 0; i < length; ++i) {
       const int x = p.x0 + static_cast<int>(i);
-      const int o = f.owner[static_cast<std::size_t>(p.y) * f.width + x];
-      if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != p.tri) continue;
+      if (!f.shows(static_cast<std::size_t>(p.tri), x, p.y)) continue;
       const auto value = [&](int ch) {
         return static_cast<double>(out[at + 2 * (static_cast<std::size_t>(ch) * length + i)]) /
                full;
@@ -864,6 +977,251 @@ Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::s
       img.at(x, p.y) = to_rgb8({value(0), value(1), value(2)});
     }
     at += 2 * 3 * length;
+  }
+  return img;
+}
+
+// ---- Vlasic's texturing approaches (seed 000, chapter 5) ----
+// Texture coordinates at each triangle's sample points, interpolated in (s, t) per pixel:
+// linearly from the vertices (environment map, Blinn map) or by eq. 4.1 from the six samples
+// (quadratic Blinn map); the textures are looked up per pixel (texmap::Texture).
+
+struct TextureOptions {
+  int size = 256;
+  texmap::Filter filter = texmap::Filter::bilinear;
+};
+
+// v in eye coordinates (x right, y up, z towards the viewer).
+Vec3 to_eye(const Frame& f, Vec3 v) {
+  return {dot(v, f.cam_right), dot(v, f.cam_up), dot(v, f.lighting.view_dir)};
+}
+
+// Interpolants of one triangle: per quantity the eq. 4.1 coefficients through its sample values.
+struct Interpolants {
+  std::vector<quad::Coeffs> c;
+  void add(const std::array<double, 6>& r, bool quadratic) {
+    c.push_back(quadratic ? quad::coefficients(r) : quad::linear_coefficients(r[0], r[2], r[4]));
+  }
+  [[nodiscard]] double at(std::size_t k, quad::St st) const { return quad::eval_st(c[k], st); }
+};
+
+Image texture_float(const Method& m, const Frame& f, const TextureOptions& to) {
+  const std::vector<Light>& lights = f.lighting.lights;
+  const bool env = m.kind == Kind::env_map;
+  const bool quadratic = m.kind == Kind::quad_blinn_map;
+  const double n = f.material.shininess;
+  // The environment map: one sphere map per light, (W·L)^n for the light's direction seen from
+  // the object's centre (a point light becomes a light at infinity: the map cannot hold more).
+  // The Blinn maps: the diffuse and the specular texture, shared by all lights.
+  std::vector<texmap::Texture> tex;
+  if (env) {
+    for (const Light& l : lights) {
+      const Vec3 d =
+          to_eye(f, l.at_infinity ? normalized(l.position) : normalized(l.position - f.centre));
+      tex.emplace_back(
+          [d, n](double u, double v) {
+            Vec3 w;
+            if (!texmap::sphere_map_direction({u, v}, w)) return 0.0;
+            const double c = dot(w, d);
+            return c > 0 ? std::pow(c, n) : 0.0;
+          },
+          0, 1, to.size);
+    }
+  } else {
+    tex.emplace_back(texmap::blinn_diffuse, -1, 1, to.size);
+    tex.emplace_back([n4 = 4 * n](double x, double y) { return texmap::blinn_specular(x, y, n4); },
+                     -1, 1, to.size);
+  }
+  const Fragment material = material_fragment(f);
+  std::vector<Interpolants> tri(f.geometry.triangles.size());
+  std::vector<bool> done(tri.size());
+  std::vector<Amounts> a(lights.size());
+  Image img = blank(f);
+  for (const Fragment& fr : f.fragments) {
+    const auto t = static_cast<std::size_t>(fr.tri);
+    Interpolants& ip = tri[t];
+    if (!done[t]) {
+      done[t] = true;
+      const SamplePoints sp = sample_points(f, fr.tri, quadratic);
+      const int step = quadratic ? 1 : 2;  // linear: the vertices (samples 0, 2, 4) only
+      if (env) {
+        // (u, v) of the reflected view vector, and the Gouraud diffuse colour per channel.
+        std::array<double, 6> u{}, v{}, d[3]{};
+        for (int k = 0; k < 6; k += step) {
+          const Vec3 nv = sp.n[k], view = f.lighting.v_at(sp.p[k]);
+          const texmap::Uv uv = texmap::sphere_map_uv(to_eye(f, 2 * dot(nv, view) * nv - view));
+          u[k] = uv.u;
+          v[k] = uv.v;
+          std::vector<Amounts> diffuse;
+          for (const Light& l : lights) {
+            diffuse.push_back({std::max(0.0, dot(nv, Lighting::l_at(l, sp.p[k]))), 0});
+          }
+          const Vec3 c = clamp01(combine(material, lights, diffuse));
+          for (int ch = 0; ch < 3; ++ch) d[ch][k] = channel(c, ch);
+        }
+        ip.add(u, quadratic);
+        ip.add(v, quadratic);
+        for (const auto& dc : d) ip.add(dc, quadratic);
+      } else {
+        // Per light: (u, v) in the diffuse plane (normal L) and in the specular one (normal H).
+        for (const Light& l : lights) {
+          std::array<double, 6> q[4]{};
+          for (int k = 0; k < 6; k += step) {
+            const Vec3 ld = Lighting::l_at(l, sp.p[k]);
+            const Vec3 h = normalized(ld + f.lighting.v_at(sp.p[k]));
+            const texmap::Uv du = texmap::blinn_uv(sp.n[k], ld, f.cam_up, f.cam_right);
+            const texmap::Uv su = texmap::blinn_uv(sp.n[k], h, f.cam_up, f.cam_right);
+            q[0][k] = du.u;
+            q[1][k] = du.v;
+            q[2][k] = su.u;
+            q[3][k] = su.v;
+          }
+          for (const auto& r : q) ip.add(r, quadratic);
+        }
+      }
+    }
+    Vec3 c;
+    if (env) {
+      c = {ip.at(2, fr.st), ip.at(3, fr.st), ip.at(4, fr.st)};
+      const texmap::Uv uv{ip.at(0, fr.st), ip.at(1, fr.st)};
+      for (std::size_t k = 0; k < lights.size(); ++k) {
+        c = c + mul(lights[k].colour, fr.ks * tex[k].sample(uv, to.filter));
+      }
+    } else {
+      for (std::size_t k = 0; k < lights.size(); ++k) {
+        a[k] = {tex[0].sample(ip.at(4 * k, fr.st), ip.at(4 * k + 1, fr.st), to.filter),
+                tex[1].sample(ip.at(4 * k + 2, fr.st), ip.at(4 * k + 3, fr.st), to.filter)};
+      }
+      c = combine(fr, lights, a);
+    }
+    img.at(fr.x, fr.y) = to_rgb8(c);
+  }
+  return img;
+}
+
+// ---- Bishop-Weimer Fast Phong (seeds 000 and 003) ----
+// Per triangle and light, N·L/|N| and N·H/|N| as their Taylor quadratics about the centroid
+// (fast_phong::taylor), with L and H fixed at the centroid (Bishop and Weimer put light and
+// eye at infinity); diffuse max(T_L, 0), specular max(T_H, 0)^(4n) (their table lookup).
+Image fast_phong_float(const Frame& f) {
+  const std::vector<Light>& lights = f.lighting.lights;
+  const double n4 = 4 * f.material.shininess;
+  std::vector<std::vector<std::pair<quad::Coeffs, quad::Coeffs>>> tri(f.geometry.triangles.size());
+  std::vector<Amounts> a(lights.size());
+  Image img = blank(f);
+  for (const Fragment& fr : f.fragments) {
+    auto& terms = tri[static_cast<std::size_t>(fr.tri)];
+    if (terms.empty()) {
+      const auto& idx = f.geometry.triangles[static_cast<std::size_t>(fr.tri)];
+      const Vec3 n0 = f.geometry.normals[idx[0]], n1 = f.geometry.normals[idx[1]],
+                 n2 = f.geometry.normals[idx[2]];
+      const Vec3 pc = (f.geometry.positions[idx[0]] + f.geometry.positions[idx[1]] +
+                       f.geometry.positions[idx[2]]) *
+                      (1.0 / 3);
+      try {
+        for (const Light& l : lights) {
+          const Vec3 ld = Lighting::l_at(l, pc);
+          terms.emplace_back(fast_phong::taylor(n0, n1, n2, ld),
+                             fast_phong::taylor(n0, n1, n2, normalized(ld + f.lighting.v_at(pc))));
+        }
+      } catch (const Error& e) {
+        throw Error(fmt::format("scene '{}', triangle {}: {}", f.scene, fr.tri, e.what()));
+      }
+    }
+    for (std::size_t k = 0; k < lights.size(); ++k) {
+      const double d = quad::eval_st(terms[k].first, fr.st);
+      const double h = quad::eval_st(terms[k].second, fr.st);
+      a[k] = {std::max(0.0, d), h > 0 ? std::pow(h, n4) : 0.0};
+    }
+    img.at(fr.x, fr.y) = to_rgb8(combine(fr, lights, a));
+  }
+  return img;
+}
+
+// ---- Lai-Tai Fence and highlight-track shading (seed 003, section 2) ----
+// Per span: Phong (the reference lighting, clamped like every sample colour) at exact normals
+// on the sample pixels — the span's two ends (Fence: the triangle's edges) and, for the
+// highlight track, the pixel nearest each light's track point — and the colour interpolated
+// linearly between neighbouring samples. Lai and Tai put light and eye at infinity, so H is one
+// vector per triangle; for a local light or viewer phongsim starts from H at the centroid and
+// moves H to the track point found, twice (with H constant that changes nothing).
+Image fence_float(const Method& m, const Frame& f) {
+  const Fragment material = material_fragment(f);
+  bool local = !f.lighting.view_at_infinity;
+  for (const Light& l : f.lighting.lights) local = local || !l.at_infinity;
+  // Per triangle, built when its first pixel comes (like every per-triangle set-up here): per
+  // row y0.. the sample pixels and their colours, in the shared arrays xs and colours.
+  struct Row {
+    std::uint32_t begin = 0, count = 0;
+  };
+  struct Samples {
+    bool done = false;
+    int y0 = 0;
+    std::size_t rows = 0;  // its first Row
+  };
+  std::vector<Samples> tri(f.geometry.triangles.size());
+  std::vector<Row> rows;
+  std::vector<int> xs;
+  std::vector<Vec3> colours;
+  std::vector<Vec3> h(f.lighting.lights.size());  // per light
+  const auto build = [&](std::size_t t) {
+    if (m.kind == Kind::highlight_track) {
+      const auto& idx = f.geometry.triangles[t];
+      const Vec3 pc = (f.geometry.positions[idx[0]] + f.geometry.positions[idx[1]] +
+                       f.geometry.positions[idx[2]]) *
+                      (1.0 / 3);
+      for (std::size_t k = 0; k < h.size(); ++k) {
+        h[k] = normalized(Lighting::l_at(f.lighting.lights[k], pc) + f.lighting.v_at(pc));
+      }
+    }
+    const auto pv = quad::to_pixels(f.screen[t]);
+    const std::vector<Span> spans = spans_of(f, t);
+    tri[t] = {true, spans.front().y, rows.size()};
+    rows.resize(rows.size() + static_cast<std::size_t>(spans.back().y - spans.front().y + 1));
+    for (const Span& e : spans) {
+      const auto begin = static_cast<std::uint32_t>(xs.size());
+      xs.push_back(e.x0);
+      if (m.kind == Kind::highlight_track && e.x1 > e.x0) {
+        const double per_pixel = 1.0 / (e.x1 - e.x0);
+        const Vec3 dn = (e.s2.n - e.s1.n) * per_pixel;
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          double off = highlight_track_offset(e.s1.n, dn, h[k]);
+          for (int refine = 0; refine < 2 && std::isfinite(off) && local; ++refine) {
+            const Vec3 p = e.s1.p + (off * per_pixel) * (e.s2.p - e.s1.p);  // affine along rows
+            const Vec3 hp =
+                normalized(Lighting::l_at(f.lighting.lights[k], p) + f.lighting.v_at(p));
+            off = highlight_track_offset(e.s1.n, dn, hp);
+          }
+          if (!std::isfinite(off)) continue;
+          const long x = e.x0 + std::lround(off);
+          if (x > e.x0 && x < e.x1) xs.push_back(static_cast<int>(x));
+        }
+      }
+      if (e.x1 != e.x0) xs.push_back(e.x1);
+      std::sort(xs.begin() + begin, xs.end());
+      xs.erase(std::unique(xs.begin() + begin, xs.end()), xs.end());
+      for (std::size_t k = begin; k < xs.size(); ++k) {
+        const int x = xs[k];
+        const Surface sf = x == e.x0 ? e.s1 : x == e.x1 ? e.s2 : surface_at(f, t, pv, x, e.y);
+        colours.push_back(clamp01(shade_float(phong(), f, material, normalized(sf.n), sf.p)));
+      }
+      rows[tri[t].rows + static_cast<std::size_t>(e.y - spans.front().y)] = {
+          begin, static_cast<std::uint32_t>(xs.size() - begin)};
+    }
+  };
+  Image img = blank(f);
+  for (const Fragment& fr : f.fragments) {
+    const auto t = static_cast<std::size_t>(fr.tri);
+    if (!tri[t].done) build(t);
+    const Row& r = rows[tri[t].rows + static_cast<std::size_t>(fr.y - tri[t].y0)];
+    // The last sample at or left of the pixel: its own colour there, a linear step beyond.
+    std::size_t k = r.begin;
+    while (k + 1 < r.begin + r.count && xs[k + 1] <= fr.x) ++k;
+    Vec3 c = colours[k];
+    if (fr.x > xs[k]) {
+      c = c + (fr.x - xs[k]) * ((colours[k + 1] - colours[k]) * (1.0 / (xs[k + 1] - xs[k])));
+    }
+    img.at(fr.x, fr.y) = to_rgb8(c);
   }
   return img;
 }
@@ -908,6 +1266,15 @@ Backend parse_backend(std::string_view name) {
   throw Error(fmt::format("unknown backend '{}' (known: auto, float, model, rtl)", name));
 }
 
+std::string_view terms_name(Terms t) { return t == Terms::all ? "all" : "specular"; }
+
+Terms parse_terms(std::string_view name) {
+  for (const Terms t : {Terms::all, Terms::specular}) {
+    if (terms_name(t) == name) return t;
+  }
+  throw Error(fmt::format("unknown terms '{}' (known: all, specular)", name));
+}
+
 const std::vector<MethodInfo>& render_methods() {
   static const std::vector<MethodInfo> infos = [] {
     std::vector<MethodInfo> v;
@@ -931,8 +1298,27 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
                     "fit the 2048-pixel screen",
                     o.size));
   }
-  const std::vector<std::string>& names =
+  if (o.texture_size < 0 || o.texture_size > texmap::kMaxTextureSize) {
+    throw Error(fmt::format("--texture-size {} is out of range (0..{}; 0: the exact texture)",
+                            o.texture_size, texmap::kMaxTextureSize));
+  }
+  if (o.repeats < 1 || o.repeats > 1000) {
+    throw Error(fmt::format("repeats {} is out of range (1..1000)", o.repeats));
+  }
+  std::vector<std::string> names =
       o.methods.empty() ? (analytic ? kShinyballsMethods : kMeshMethods) : o.methods;
+  if (names.size() == 1 && names.front() == "all") {
+    // Every method the scene and the backend can use.
+    names.clear();
+    for (const Method& m : methods()) {
+      if ((analytic && m.info.mesh_only) ||
+          (o.backend != Backend::automatic && o.backend != Backend::float_ref &&
+           m.info.config.empty())) {
+        continue;
+      }
+      names.emplace_back(m.info.name);
+    }
+  }
   const std::string ref_name = o.reference.empty() ? "phong" : o.reference;
   const Method& ref = method(ref_name);
   std::vector<const Method*> chosen;
@@ -970,39 +1356,64 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
       units[key] = std::make_unique<Unit>(key.first, backends[i], o.no_build);
     }
   }
-  const Frame f = analytic ? shinyballs(o.size == 0 ? 64 : o.size)
-                           : mesh_frame(fs::path(o.scene).extension() == ".toml"
-                                            ? load_scene(o.scene)
-                                            : builtin_scene(o.scene, o.teapot_resolution),
-                                        o.size);
+  Frame f = analytic ? shinyballs(o.size == 0 ? 64 : o.size)
+                     : mesh_frame(fs::path(o.scene).extension() == ".toml"
+                                      ? load_scene(o.scene)
+                                      : builtin_scene(o.scene, o.teapot_resolution),
+                                  o.size);
+  if (o.terms == Terms::specular) {
+    f.material.ambient = f.material.diffuse = {};
+    for (Fragment& fr : f.fragments) fr.ka = fr.kd = {};
+  }
+  const TextureOptions texture{o.texture_size, o.texture_filter};
 
   if (o.scanline >= f.height) {
     throw Error(
         fmt::format("--scanline {} is outside the image (0..{})", o.scanline, f.height - 1));
   }
 
-  const auto render_one = [&](const Method& m, Backend b) {
+  const auto float_image = [&](const Method& m) {
+    switch (m.kind) {
+      case Kind::pixel:
+        return pixel_float(m, f);
+      case Kind::kb_exact:
+      case Kind::kb_decompose:
+      case Kind::kb_one_vector:
+        return kb_float(m, f);
+      case Kind::env_map:
+      case Kind::blinn_map:
+      case Kind::quad_blinn_map:
+        return texture_float(m, f, texture);
+      case Kind::fast_phong:
+        return fast_phong_float(f);
+      case Kind::fence:
+      case Kind::highlight_track:
+        return fence_float(m, f);
+      default:
+        return vertex_float(m, f);
+    }
+  };
+  const auto unit_image = [&](const Method& m, Backend b, std::string_view what) {
+    Unit& unit = *units.at({unit_path(m), b});
+    switch (m.kind) {
+      case Kind::pixel:
+        return pixel_unit(f, unit, progress, what);
+      case Kind::kb_one_vector:
+        return kb_unit(f, unit, progress, what);
+      default:
+        return vertex_unit(m, f, unit, progress, what);
+    }
+  };
+  // One shading pass, timed (wall clock and the process's CPU time).
+  const auto render_once = [&](const Method& m, Backend b, MethodResult& r) {
     const std::string what = fmt::format("{} [{}]", m.info.name, backend_name(b));
     progress(what, 0, f.fragments.size());
+    const std::clock_t cpu = std::clock();
     const auto start = std::chrono::steady_clock::now();
-    MethodResult r;
-    r.method = std::string(m.info.name);
-    r.backend = b;
-    const bool kb =
-        m.kind == Kind::kb_exact || m.kind == Kind::kb_decompose || m.kind == Kind::kb_one_vector;
-    if (b == Backend::float_ref) {
-      r.image = m.kind == Kind::pixel ? pixel_float(m, f)
-                : kb                  ? kb_float(m, f)
-                                      : vertex_float(m, f);
-    } else {
-      Unit& unit = *units.at({unit_path(m), b});
-      r.image = m.kind == Kind::pixel ? pixel_unit(f, unit, progress, what)
-                : kb                  ? kb_unit(f, unit, progress, what)
-                                      : vertex_unit(m, f, unit, progress, what);
-    }
+    r.image = b == Backend::float_ref ? float_image(m) : unit_image(m, b, what);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.cpu_seconds = static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC;
     progress(what, f.fragments.size(), f.fragments.size());
-    return r;
   };
 
   RenderResult result;
@@ -1010,10 +1421,47 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   result.mask = mask_of(f);
   result.regions = f.regions;
   result.scanline = o.scanline < 0 ? f.height / 2 : o.scanline;
-  result.reference = render_one(ref, Backend::float_ref);
+  if (o.terms == Terms::specular) result.settings = ", specular term only";
+  for (const Method* m : chosen) {
+    if (m->kind == Kind::env_map || m->kind == Kind::blinn_map || m->kind == Kind::quad_blinn_map) {
+      result.settings += o.texture_size == 0
+                             ? std::string(", exact textures")
+                             : fmt::format(", textures {} x {} {}", o.texture_size, o.texture_size,
+                                           texmap::filter_name(o.texture_filter));
+      break;
+    }
+  }
+  // Round by round every method once (the reference first), so that a drift of the machine's
+  // speed during the run affects all methods alike; the medians are kept.
+  std::vector<const Method*> all{&ref};
+  std::vector<Backend> all_backends{Backend::float_ref};
+  all.insert(all.end(), chosen.begin(), chosen.end());
+  all_backends.insert(all_backends.end(), backends.begin(), backends.end());
+  std::vector<MethodResult> rendered(all.size());
+  std::vector<std::vector<double>> wall(all.size()), cpu(all.size());
+  for (int round = 0; round < o.repeats; ++round) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      MethodResult& r = rendered[i];
+      r.method = std::string(all[i]->info.name);
+      r.backend = all_backends[i];
+      render_once(*all[i], all_backends[i], r);
+      wall[i].push_back(r.seconds);
+      cpu[i].push_back(r.cpu_seconds);
+    }
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t h = v.size() / 2;
+    return v.size() % 2 == 1 ? v[h] : (v[h - 1] + v[h]) / 2;
+  };
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    rendered[i].seconds = median(wall[i]);
+    rendered[i].cpu_seconds = median(cpu[i]);
+  }
+  result.reference = std::move(rendered.front());
   result.reference.metrics = compare(result.reference.image, result.reference.image, result.mask);
-  for (std::size_t i = 0; i < chosen.size(); ++i) {
-    MethodResult r = render_one(*chosen[i], backends[i]);
+  for (std::size_t i = 1; i < rendered.size(); ++i) {
+    MethodResult& r = rendered[i];
     r.metrics = compare(result.reference.image, r.image, result.mask);
     for (const auto& region : result.regions) {
       r.region_metrics.push_back(compare(result.reference.image, r.image, region.second));
@@ -1081,18 +1529,19 @@ std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path
   written.push_back(path("scanline.png"));
 
   OutputFile csv(path("metrics.csv"));
-  std::string text = "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds\n";
+  std::string text =
+      "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds,cpu_seconds\n";
   for (const MethodResult& m : r.results) {
-    text += fmt::format("{},{},{:.6f},{:.4f},{},{},{:.3f}\n", m.method, backend_name(m.backend),
-                        m.metrics.colour_correctness, m.metrics.psnr, m.metrics.max_error,
-                        m.metrics.pixels, m.seconds);
+    text += fmt::format("{},{},{:.6f},{:.4f},{},{},{:.6f},{:.6f}\n", m.method,
+                        backend_name(m.backend), m.metrics.colour_correctness, m.metrics.psnr,
+                        m.metrics.max_error, m.metrics.pixels, m.seconds, m.cpu_seconds);
   }
   std::fputs(text.c_str(), csv.get());
   csv.commit();
   written.push_back(path("metrics.csv"));
   OutputFile md(path("metrics.md"));
-  std::fputs(fmt::format("Scene {}, reference {} (float)\n\n{}", r.scene, r.reference.method,
-                         metrics_markdown(r))
+  std::fputs(fmt::format("Scene {}, reference {} (float){}\n\n{}", r.scene, r.reference.method,
+                         r.settings, metrics_markdown(r))
                  .c_str(),
              md.get());
   md.commit();

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "model/texture_maps.h"
 #include "sim/image.h"
 
 namespace phongsim {
@@ -19,6 +20,13 @@ enum class Backend { automatic, float_ref, model, rtl };
 
 [[nodiscard]] std::string_view backend_name(Backend b);
 [[nodiscard]] Backend parse_backend(std::string_view name);  // auto|float|model|rtl; Error else
+
+// Which terms of the lighting model every method (and the reference) renders: all, or only the
+// specular one (ambient and diffuse reflectances zeroed), as Vlasic compares his methods
+// (Figures 6.1c-d, Table 6.1).
+enum class Terms { all, specular };
+[[nodiscard]] std::string_view terms_name(Terms t);
+[[nodiscard]] Terms parse_terms(std::string_view name);  // all|specular; Error else
 
 // One shading method (a row of the comparison grid).
 struct MethodInfo {
@@ -32,7 +40,8 @@ struct MethodInfo {
 
 struct RenderOptions {
   std::string scene = "shinyballs";  // a built-in scene name or a scene file (.toml)
-  std::vector<std::string> methods;  // empty: the scene's default list
+  std::vector<std::string> methods;  // empty: the scene's default list; "all": every method the
+                                     // scene can use
   Backend backend = Backend::automatic;
   int size = 0;               // shinyballs: sphere radius in pixels (default 64); meshes: width
   int teapot_resolution = 0;  // 0: default
@@ -42,6 +51,14 @@ struct RenderOptions {
   // A configuration file that replaces the built-in one of every unit method of its pipeline
   // (width exploration renders scenes through candidate configurations).
   std::string unit_config;
+  Terms terms = Terms::all;
+  // The texture methods' textures (docs/methods.md): texels per side (0: the exact texture
+  // function, no sampling) and filtering.
+  int texture_size = 256;
+  texmap::Filter texture_filter = texmap::Filter::bilinear;
+  // Each method (the reference too) is rendered this many times, in interleaved rounds; its
+  // times are the medians (`phongsim bench methods`). The images are the same every round.
+  int repeats = 1;
 };
 
 struct MethodResult {
@@ -50,7 +67,8 @@ struct MethodResult {
   Image image;
   ImageMetrics metrics;                      // against the reference image over the object's pixels
   std::vector<ImageMetrics> region_metrics;  // the same per RenderResult::regions
-  double seconds = 0;
+  double seconds = 0;      // wall-clock time of the shading pass (median over the repeats)
+  double cpu_seconds = 0;  // the process's CPU time for it (median over the repeats)
 };
 
 struct RenderResult {
@@ -61,6 +79,9 @@ struct RenderResult {
   // Named parts of the object (shinyballs: each sphere's visible pixels, "n=1" ... "n=256").
   std::vector<std::pair<std::string, std::vector<bool>>> regions;
   int scanline = 0;  // default row of the scanline plot
+  // What the images depend on besides scene and methods: "" or ", specular term only", and the
+  // textures' size and filter when a texture method was rendered.
+  std::string settings;
 };
 
 // Progress: (what, done, total) — called often; the CLI throttles its display.

@@ -232,6 +232,24 @@ EOT
     "$phongsim" render --scene "$tmp/scene.toml" --method gouraud,phong --backend float --size 32 \
       --out "$tmp/s" >"$tmp/stdout" 2>&1 || fail "scene file: $(cat "$tmp/stdout")"
     [ -s "$tmp/s/scene_gouraud.png" ] || fail "scene file: no image ($(ls "$tmp/s"))"
+    # Every method on a mesh scene, with the texture and terms options; the CPU-time table.
+    "$phongsim" render --list-methods >"$tmp/stdout" || fail "--list-methods failed"
+    for m in env-map blinn-map quad-blinn-map fast-phong fence highlight-track; do
+      grep -q "^  $m " "$tmp/stdout" || fail "--list-methods lacks $m: $(cat "$tmp/stdout")"
+    done
+    "$phongsim" render --scene triangle --method all --backend float --size 48 --terms specular \
+      --texture-size 64 --texture-filter nearest --out "$tmp/all" --quiet >"$tmp/stdout" 2>&1 ||
+      fail "render --method all: $(cat "$tmp/stdout")"
+    [ "$(grep -c '| float |' "$tmp/stdout")" -eq "$(grep -c '^  ' <("$phongsim" render --list-methods))" ] ||
+      fail "--method all did not render every method: $(cat "$tmp/stdout")"
+    for m in env-map blinn-map quad-blinn-map fast-phong fence highlight-track; do
+      [ -s "$tmp/all/triangle_$m.png" ] || fail "missing triangle_$m.png"
+    done
+    "$phongsim" bench methods --scene triangle --rounds 1 --size 64 >"$tmp/stdout" 2>&1 ||
+      fail "bench methods: $(cat "$tmp/stdout")"
+    grep -qE '^\| gouraud \| [0-9.]+ \| 1\.0000 \| [0-9.]+ \|$' "$tmp/stdout" &&
+      grep -qE '^\| phong \| [0-9.]+ \| [0-9.]+ \| 1\.0000 \|$' "$tmp/stdout" &&
+      grep -q '^| highlight-track |' "$tmp/stdout" || fail "bench methods table: $(cat "$tmp/stdout")"
     ;;
 
   render-errors)
@@ -245,6 +263,21 @@ EOT
     expect_error "size -3 is out of range" "$phongsim" render --size -3 --out "$tmp/o"
     expect_error "--scanline 999 is outside the image" \
       "$phongsim" render --size 8 --method lyon-k2 --backend float --scanline 999 --out "$tmp/o"
+    expect_error "--texture-size 5000 is out of range" \
+      "$phongsim" render --scene triangle --method blinn-map --texture-size 5000 --out "$tmp/o"
+    expect_error "unknown texture filter 'cubic'" \
+      "$phongsim" render --scene triangle --method blinn-map --texture-filter cubic --out "$tmp/o"
+    expect_error "unknown terms 'ambient'" "$phongsim" render --terms ambient --out "$tmp/o"
+    expect_error "method 'fence' interpolates over triangles" \
+      "$phongsim" render --method fence --out "$tmp/o"
+    # Normals that cancel at the centroid: Fast Phong has nothing to expand about.
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1 0 0\nvn -0.5 0.8660254037844386 0\nvn -0.5 -0.8660254037844386 0\nf 1//1 2//2 3//3\n' \
+      >"$tmp/cancel.obj"
+    printf 'mesh = "cancel.obj"\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/cancel.toml"
+    expect_error "scene 'cancel', triangle 0: fast Phong: the interpolated normal vanishes" \
+      "$phongsim" render --scene "$tmp/cancel.toml" --method fast-phong --out "$tmp/o"
+    expect_error "--rounds 0 is out of range" "$phongsim" bench methods --rounds 0
+    expect_error "unknown method 'nonesuch'" "$phongsim" bench methods --method nonesuch
     printf 'mesh = "tri.obj"\nwidht = 3\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/bad.toml"
     expect_error "bad.toml:2: " "$phongsim" render --scene "$tmp/bad.toml" --out "$tmp/o"
     printf 'v 0 0 0\nv 1 0 zero\nf 1 2 3\n' >"$tmp/bad.obj"
