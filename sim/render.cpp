@@ -12,8 +12,6 @@
 
 #include "model/config.h"
 #include "model/error.h"
-#include "model/fast_phong.h"
-#include "model/highlight_track.h"
 #include "model/kb.h"
 #include "model/kb_float.h"
 #include "model/kb_setup.h"
@@ -22,20 +20,19 @@
 #include "model/quad.h"
 #include "model/quad_float.h"
 #include "model/quad_setup.h"
-#include "model/texture_maps.h"
+#include "sim/frame.h"
 #include "sim/harness.h"
 #include "sim/output_file.h"
 #include "sim/pipelines.h"
 #include "sim/rtl_library.h"
 #include "sim/scene.h"
+#include "sim/seed_methods.h"
 
 namespace phongsim {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr int kSubBits = 4;  // subpixel bits of projected vertices (the quad configs' sub_bits)
-constexpr std::string_view kShinyballs = "shinyballs";
+using namespace shading;  // the frame and what the methods share (sim/frame.h)
 
 // ---- Methods ----
 
@@ -60,7 +57,7 @@ struct Method {
   MethodInfo info;
   Kind kind;
   // Per-pixel specular amount for unit N, L, V and Phong shininess n (Kind::pixel).
-  double (*spec)(Vec3 n, Vec3 l, Vec3 v, double shininess) = nullptr;
+  SpecularFn spec = nullptr;
 };
 
 double row(lyon::Spec s, Vec3 n, Vec3 l, Vec3 v, double shin) {
@@ -254,282 +251,10 @@ class Unit {
   std::shared_ptr<RtlLibrary> library_;
 };
 
-// ---- Geometry: fragments (the visible surface point of each object pixel) ----
-
-struct Fragment {
-  int x = 0, y = 0;
-  int tri = -1;  // mesh triangle (-1: analytic sphere)
-  quad::St st;   // (s, t) in the triangle (eq. 4.3 at the pixel centre)
-  Vec3 n;        // interpolated normal (not normalized)
-  Vec3 p;        // surface point (world)
-  double shininess = 1;
-  Vec3 kd, ks, ka;  // material
-};
-
-struct Lighting {
-  std::vector<Light> lights;
-  bool view_at_infinity = true;
-  Vec3 view_dir{0, 0, 1};  // towards the viewer (orthographic)
-  Vec3 eye;                // perspective
-
-  [[nodiscard]] Vec3 v_at(Vec3 p) const {
-    return view_at_infinity ? view_dir : normalized(eye - p);
-  }
-  [[nodiscard]] static Vec3 l_at(const Light& l, Vec3 p) {
-    return l.at_infinity ? normalized(l.position) : normalized(l.position - p);
-  }
-};
-
-// Everything a method needs: the image frame, the fragments, the mesh in screen space.
-struct Frame {
-  std::string scene;
-  int width = 0, height = 0;
-  Rgb8 background;
-  std::vector<Fragment> fragments;
-  std::vector<int> owner;     // per pixel: fragment index or -1
-  std::vector<int> seen;      // per pixel: the triangle visible there or -1 (mesh scenes)
-  std::vector<bool> visible;  // per triangle: visible at some pixel (mesh scenes)
-  Lighting lighting;
-  bool mesh = false;
-  Mesh geometry;                          // world positions and normals
-  std::vector<quad::SubpixelTri> screen;  // projected triangles (mesh scenes)
-  // Each triangle's covered pixels within the image, row-major (quad::raster): every method
-  // and the hardware units cover exactly these.
-  std::vector<std::vector<std::pair<int, int>>> coverage;
-  Material material;
-  std::vector<std::pair<std::string, std::vector<bool>>> regions;  // RenderResult::regions
-
-  // Whether triangle t is the surface visible at pixel (x, y) (a compact array: the scanline
-  // methods ask for every pixel of their spans).
-  [[nodiscard]] bool shows(std::size_t t, int x, int y) const {
-    return seen[static_cast<std::size_t>(y) * width + x] == static_cast<int>(t);
-  }
-  // The camera's right and up axes in world space (with lighting.view_dir: eye coordinates x,
-  // y, z), and the mesh's bounding-box centre (where the environment map is seen from).
-  Vec3 cam_right{1, 0, 0}, cam_up{0, 1, 0};
-  Vec3 centre;
-};
-
-// Lyon's specular.m (seed 002, appendix): spheres of radius m pixels for n = 1, 4, 16, 64, 256,
-// each offset by one radius to the right (the earlier one in front), viewpoint [0, 0, 1], lights
-// at infinity along [1, 1, -1] and [1, -1, 1], diffuse factor 35, specular factor 400·(n/256)^¼,
-// on a bright (255) background. One strip per method instead of the MATLAB's overlapped rows.
-Frame shinyballs(int m) {
-  Frame f;
-  f.scene = std::string(kShinyballs);
-  f.width = 6 * m + 1;
-  f.height = 2 * m + 1;
-  f.background = {255, 255, 255};
-  for (const double n : {1, 4, 16, 64, 256}) {
-    f.regions.emplace_back(fmt::format("n={}", n),
-                           std::vector<bool>(static_cast<std::size_t>(f.width) * f.height));
-  }
-  f.lighting.lights = {{normalized({1, 1, -1}), true, {1, 1, 1}},
-                       {normalized({1, -1, 1}), true, {1, 1, 1}}};
-  f.owner.assign(static_cast<std::size_t>(f.width) * f.height, -1);
-  const double ns[] = {1, 4, 16, 64, 256};
-  for (int py = 0; py < f.height; ++py) {
-    for (int px = 0; px < f.width; ++px) {
-      const double xx = (0.5 + (px - m)) / m;
-      const double y = -(0.5 + (py - m)) / m;  // MATLAB's y, pointing up
-      for (int ni = 0; ni < 5; ++ni) {
-        const double x = xx - ni;
-        const double z = 1 - x * x - y * y;
-        if (z < 0) continue;
-        Fragment fr;
-        fr.x = px;
-        fr.y = py;
-        fr.n = {x, y, std::sqrt(z)};
-        fr.p = fr.n;
-        fr.shininess = ns[ni];
-        const double specf = 400.0 * std::pow(ns[ni] / 256.0, 0.25);
-        fr.kd = Vec3{35, 35, 35} * (1.0 / 255);
-        fr.ks = Vec3{specf, specf, specf} * (1.0 / 255);
-        const std::size_t at = static_cast<std::size_t>(py) * f.width + px;
-        f.owner[at] = static_cast<int>(f.fragments.size());
-        f.regions[static_cast<std::size_t>(ni)].second[at] = true;
-        f.fragments.push_back(fr);
-        break;
-      }
-    }
-  }
-  return f;
-}
-
-// Projects the scene's mesh (orthographic or perspective camera), rasterizes every triangle with
-// the quad unit's coverage rule (quad::raster, top-left) and keeps the nearest surface per pixel
-// (depth interpolated affinely in screen space, like every attribute here: no perspective
-// correction, as in the hardware).
-Frame mesh_frame(const Scene& sc, int width_override) {
-  Frame f;
-  f.scene = sc.name;
-  f.mesh = true;
-  f.width = sc.width;
-  f.height = sc.height;
-  if (width_override > 0) {
-    f.height = std::max(1, static_cast<int>(std::lround(static_cast<double>(sc.height) *
-                                                        width_override / sc.width)));
-    f.width = width_override;
-  }
-  if (f.width > 2048 || f.height > 2048) {
-    throw Error(fmt::format("image {} x {} exceeds the 2048 x 2048 screen", f.width, f.height));
-  }
-  const auto byte = [](double c) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0, 1.0) * 255));
-  };
-  f.background = {byte(sc.background.x), byte(sc.background.y), byte(sc.background.z)};
-  f.geometry = sc.mesh;
-  f.material = sc.material;
-  f.lighting.lights = sc.lights;
-  const Camera& cam = sc.camera;
-  const Vec3 w = normalized(cam.eye - cam.target);
-  const Vec3 u = normalized(cross(cam.up, w));
-  const Vec3 v = cross(w, u);
-  const bool ortho = cam.fov_deg <= 0;
-  f.lighting.view_at_infinity = ortho;
-  f.lighting.view_dir = w;
-  f.lighting.eye = cam.eye;
-  f.cam_right = u;
-  f.cam_up = v;
-  const Box box = bounding_box(sc.mesh);
-  f.centre = (box.lo + box.hi) * 0.5;
-  const double half_h = f.height / 2.0;
-  const double focal = ortho ? half_h / (cam.ortho_height / 2)
-                             : half_h / std::tan(cam.fov_deg * 3.14159265358979323846 / 360);
-  const std::size_t nv = sc.mesh.positions.size();
-  std::vector<quad::Vertex2> sv(nv);
-  std::vector<double> depth(nv);
-  std::vector<bool> in_front(nv);
-  for (std::size_t i = 0; i < nv; ++i) {
-    const Vec3 d = sc.mesh.positions[i] - cam.eye;
-    const double cx = dot(d, u), cy = dot(d, v), cz = -dot(d, w);  // cz: distance ahead
-    in_front[i] = ortho || cz > 1e-6;
-    const double scale = ortho ? focal : focal / cz;
-    sv[i] = {f.width / 2.0 + cx * scale, half_h - cy * scale};
-    depth[i] = cz;
-  }
-  std::vector<double> zbuf(static_cast<std::size_t>(f.width) * f.height,
-                           std::numeric_limits<double>::infinity());
-  struct Hit {
-    int tri = -1;
-    quad::St st;
-  };
-  std::vector<Hit> hits(zbuf.size());
-  const double limit = 2048;
-  for (std::size_t t = 0; t < sc.mesh.triangles.size(); ++t) {
-    const auto& idx = sc.mesh.triangles[t];
-    quad::SubpixelTri tri;
-    bool usable = true;
-    for (int k = 0; k < 3; ++k) {
-      const quad::Vertex2 p = sv[static_cast<std::size_t>(idx[k])];
-      if (!in_front[static_cast<std::size_t>(idx[k])] || p.x < 0 || p.y < 0 || p.x > limit ||
-          p.y > limit) {
-        usable = false;
-      }
-    }
-    if (!usable) {
-      throw Error(fmt::format(
-          "scene '{}': triangle {} leaves the 2048 x 2048 screen or the space in front of the "
-          "camera (move the camera back or shrink the mesh)",
-          sc.name, t));
-    }
-    tri = quad::quantize(sv[idx[0]], sv[idx[1]], sv[idx[2]], kSubBits);
-    f.screen.push_back(tri);
-    f.coverage.push_back(quad::raster(tri, f.width, f.height));
-    if (quad::orientation(tri) == 0) continue;
-    const auto pv = quad::to_pixels(tri);
-    for (const auto& [x, y] : f.coverage.back()) {
-      const quad::St st = quad::st_at(pv[0], pv[1], pv[2], {x + 0.5, y + 0.5});
-      const double z =
-          (1 - st.s - st.t) * depth[idx[0]] + st.s * depth[idx[1]] + st.t * depth[idx[2]];
-      const std::size_t at = static_cast<std::size_t>(y) * f.width + x;
-      if (z < zbuf[at]) {
-        zbuf[at] = z;
-        hits[at] = {static_cast<int>(t), st};
-      }
-    }
-  }
-  f.owner.assign(zbuf.size(), -1);
-  f.seen.resize(zbuf.size());
-  f.visible.resize(sc.mesh.triangles.size());
-  for (std::size_t i = 0; i < hits.size(); ++i) {
-    f.seen[i] = hits[i].tri;
-    if (hits[i].tri >= 0) f.visible[static_cast<std::size_t>(hits[i].tri)] = true;
-  }
-  for (int y = 0; y < f.height; ++y) {
-    for (int x = 0; x < f.width; ++x) {
-      const std::size_t at = static_cast<std::size_t>(y) * f.width + x;
-      const Hit& h = hits[at];
-      if (h.tri < 0) continue;
-      const auto& idx = sc.mesh.triangles[static_cast<std::size_t>(h.tri)];
-      const auto lerp = [&](const std::vector<Vec3>& a) {
-        return (1 - h.st.s - h.st.t) * a[idx[0]] + h.st.s * a[idx[1]] + h.st.t * a[idx[2]];
-      };
-      Fragment fr;
-      fr.x = x;
-      fr.y = y;
-      fr.tri = h.tri;
-      fr.st = h.st;
-      fr.n = lerp(sc.mesh.normals);
-      fr.p = lerp(sc.mesh.positions);
-      fr.shininess = sc.material.shininess;
-      fr.kd = sc.material.diffuse;
-      fr.ks = sc.material.specular;
-      fr.ka = sc.material.ambient;
-      f.owner[at] = static_cast<int>(f.fragments.size());
-      f.fragments.push_back(fr);
-    }
-  }
-  return f;
-}
-
-// ---- Shading ----
-
-Vec3 mul(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-
-// The lighting model with per-light diffuse and specular amounts:
-// colour = ka + Σ light ⊙ (kd·diff + ks·spec).
-struct Amounts {
-  double diff = 0;
-  double spec = 0;
-};
-Vec3 combine(const Fragment& fr, const std::vector<Light>& lights,
-             const std::vector<Amounts>& amounts) {
-  Vec3 c = fr.ka;
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    c = c + mul(lights[i].colour, fr.kd * amounts[i].diff + fr.ks * amounts[i].spec);
-  }
-  return c;
-}
-
-// Float evaluation of a method's lighting at a point with unit normal n: combine() with the
-// amounts of each light, summed in the same order (no allocation: this is the per-pixel path
-// of the Phong reference that `phongsim bench methods` times).
+// Method m's lighting in float (the vertex methods light by Phong).
 Vec3 shade_float(const Method& m, const Frame& f, const Fragment& fr, Vec3 n, Vec3 p) {
-  const Vec3 v = f.lighting.v_at(p);
-  const auto spec = m.spec != nullptr ? m.spec : phong().spec;  // vertex methods light by Phong
-  Vec3 c = fr.ka;
-  for (const Light& l : f.lighting.lights) {
-    const Vec3 ld = Lighting::l_at(l, p);
-    c = c + mul(l.colour, fr.kd * std::max(0.0, dot(n, ld)) + fr.ks * spec(n, ld, v, fr.shininess));
-  }
-  return c;
+  return shade(f, fr, n, p, m.spec != nullptr ? m.spec : lyon::phong);
 }
-
-Rgb8 to_rgb8(Vec3 c) {
-  // Round half up; x + 0.5 truncated is llround for the non-negative values here (and a third
-  // of the cost of the three calls per pixel).
-  const auto byte = [](double x) {
-    return static_cast<std::uint8_t>(std::clamp(x, 0.0, 1.0) * 255 + 0.5);
-  };
-  return {byte(c.x), byte(c.y), byte(c.z)};
-}
-
-Vec3 clamp01(Vec3 c) {
-  return {std::clamp(c.x, 0.0, 1.0), std::clamp(c.y, 0.0, 1.0), std::clamp(c.z, 0.0, 1.0)};
-}
-
-Image blank(const Frame& f) { return Image(f.width, f.height, f.background); }
 
 // Per-pixel methods in float.
 Image pixel_float(const Method& m, const Frame& f) {
@@ -585,38 +310,6 @@ Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
   return img;
 }
 
-// The six sample points of triangle t in eq. 4.2 order: positions (vertices and edge
-// midpoints) and unit normals (Vlasic §4.3 step 1: midpoint normals are the normalized
-// bisectors of their vertices' normals).
-struct SamplePoints {
-  std::array<Vec3, 6> p, n;
-};
-// With midpoints false only the vertices (samples 0, 2, 4) are filled in.
-SamplePoints sample_points(const Frame& f, int t, bool midpoints = true) {
-  const auto& idx = f.geometry.triangles[static_cast<std::size_t>(t)];
-  const Vec3 p[3] = {f.geometry.positions[idx[0]], f.geometry.positions[idx[1]],
-                     f.geometry.positions[idx[2]]};
-  const Vec3 n[3] = {f.geometry.normals[idx[0]], f.geometry.normals[idx[1]],
-                     f.geometry.normals[idx[2]]};
-  if (!midpoints) {
-    return {{p[0], {}, p[1], {}, p[2], {}},
-            {normalized(n[0]), {}, normalized(n[1]), {}, normalized(n[2]), {}}};
-  }
-  return {{p[0], (p[0] + p[1]) * 0.5, p[1], (p[1] + p[2]) * 0.5, p[2], (p[2] + p[0]) * 0.5},
-          quad::sample_normals(n[0], n[1], n[2])};
-}
-
-// A fragment that carries only the frame's material: for lighting points that are not the
-// visible pixels (samples, span ends, track points).
-Fragment material_fragment(const Frame& f) {
-  Fragment fr;
-  fr.shininess = f.material.shininess;
-  fr.kd = f.material.diffuse;
-  fr.ks = f.material.specular;
-  fr.ka = f.material.ambient;
-  return fr;
-}
-
 // The lighting at the six sample points of triangle t, clamped to [0, 1]: the colours the
 // vertex methods interpolate.
 std::array<Vec3, 6> samples(const Frame& f, int t) {
@@ -626,8 +319,6 @@ std::array<Vec3, 6> samples(const Frame& f, int t) {
   for (int k = 0; k < 6; ++k) c[k] = clamp01(shade_float(phong(), f, fr, sp.n[k], sp.p[k]));
   return c;
 }
-
-double channel(Vec3 c, int ch) { return ch == 0 ? c.x : (ch == 1 ? c.y : c.z); }
 
 // Vertex methods (flat, Gouraud, subdivided Gouraud, quadratic) in float.
 // Each lighting evaluation is done once: flat per triangle, Gouraud per mesh vertex (shared
@@ -758,55 +449,6 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
     }
   }
   return img;
-}
-
-// ---- Spans: each triangle's covered pixels row by row (the scanline methods) ----
-
-// Triangle t's surface at pixel (x, y)'s centre: the interpolated normal (not normalized) and
-// position, computed exactly as the fragments' (mesh_frame).
-struct Surface {
-  Vec3 n, p;
-};
-Surface surface_at(const Frame& f, std::size_t t, const std::array<quad::Vertex2, 3>& pv, int x,
-                   int y) {
-  const auto& idx = f.geometry.triangles[t];
-  const quad::St st = quad::st_at(pv[0], pv[1], pv[2], {x + 0.5, y + 0.5});
-  const auto at = [&](const std::vector<Vec3>& a) {
-    return (1 - st.s - st.t) * a[idx[0]] + st.s * a[idx[1]] + st.t * a[idx[2]];
-  };
-  return {at(f.geometry.normals), at(f.geometry.positions)};
-}
-
-struct Span {
-  int y = 0, x0 = 0, x1 = 0;  // pixels x0..x1 of row y
-  Surface s1, s2;             // at the end pixels
-  Vec3 n1, n2;                // their normals normalized
-};
-
-// Spans of triangle t in row order: from the first to the last covered pixel of each row.
-std::vector<Span> spans_of(const Frame& f, std::size_t t) {
-  std::vector<Span> spans;
-  const auto& cov = f.coverage[t];
-  if (!cov.empty())
-    spans.reserve(static_cast<std::size_t>(cov.back().second - cov.front().second + 1));
-  for (const auto& [x, y] : cov) {
-    if (spans.empty() || spans.back().y != y) spans.push_back({y, x, x, {}, {}, {}, {}});
-    spans.back().x1 = x;
-  }
-  const auto pv = quad::to_pixels(f.screen[t]);
-  const auto end = [&](int x, int y) {  // the fragment's, when the triangle is visible there
-    if (!f.shows(t, x, y)) return surface_at(f, t, pv, x, y);
-    const Fragment& fr =
-        f.fragments[static_cast<std::size_t>(f.owner[static_cast<std::size_t>(y) * f.width + x])];
-    return Surface{fr.n, fr.p};
-  };
-  for (Span& e : spans) {
-    e.s1 = end(e.x0, e.y);
-    e.s2 = end(e.x1, e.y);
-    e.n1 = normalized(e.s1.n);
-    e.n2 = normalized(e.s2.n);
-  }
-  return spans;
 }
 
 // ---- Kuijk-Blake angular interpolation (seed 001, section 1.2) ----
@@ -981,251 +623,6 @@ Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::s
   return img;
 }
 
-// ---- Vlasic's texturing approaches (seed 000, chapter 5) ----
-// Texture coordinates at each triangle's sample points, interpolated in (s, t) per pixel:
-// linearly from the vertices (environment map, Blinn map) or by eq. 4.1 from the six samples
-// (quadratic Blinn map); the textures are looked up per pixel (texmap::Texture).
-
-struct TextureOptions {
-  int size = 256;
-  texmap::Filter filter = texmap::Filter::bilinear;
-};
-
-// v in eye coordinates (x right, y up, z towards the viewer).
-Vec3 to_eye(const Frame& f, Vec3 v) {
-  return {dot(v, f.cam_right), dot(v, f.cam_up), dot(v, f.lighting.view_dir)};
-}
-
-// Interpolants of one triangle: per quantity the eq. 4.1 coefficients through its sample values.
-struct Interpolants {
-  std::vector<quad::Coeffs> c;
-  void add(const std::array<double, 6>& r, bool quadratic) {
-    c.push_back(quadratic ? quad::coefficients(r) : quad::linear_coefficients(r[0], r[2], r[4]));
-  }
-  [[nodiscard]] double at(std::size_t k, quad::St st) const { return quad::eval_st(c[k], st); }
-};
-
-Image texture_float(const Method& m, const Frame& f, const TextureOptions& to) {
-  const std::vector<Light>& lights = f.lighting.lights;
-  const bool env = m.kind == Kind::env_map;
-  const bool quadratic = m.kind == Kind::quad_blinn_map;
-  const double n = f.material.shininess;
-  // The environment map: one sphere map per light, (W·L)^n for the light's direction seen from
-  // the object's centre (a point light becomes a light at infinity: the map cannot hold more).
-  // The Blinn maps: the diffuse and the specular texture, shared by all lights.
-  std::vector<texmap::Texture> tex;
-  if (env) {
-    for (const Light& l : lights) {
-      const Vec3 d =
-          to_eye(f, l.at_infinity ? normalized(l.position) : normalized(l.position - f.centre));
-      tex.emplace_back(
-          [d, n](double u, double v) {
-            Vec3 w;
-            if (!texmap::sphere_map_direction({u, v}, w)) return 0.0;
-            const double c = dot(w, d);
-            return c > 0 ? std::pow(c, n) : 0.0;
-          },
-          0, 1, to.size);
-    }
-  } else {
-    tex.emplace_back(texmap::blinn_diffuse, -1, 1, to.size);
-    tex.emplace_back([n4 = 4 * n](double x, double y) { return texmap::blinn_specular(x, y, n4); },
-                     -1, 1, to.size);
-  }
-  const Fragment material = material_fragment(f);
-  std::vector<Interpolants> tri(f.geometry.triangles.size());
-  std::vector<bool> done(tri.size());
-  std::vector<Amounts> a(lights.size());
-  Image img = blank(f);
-  for (const Fragment& fr : f.fragments) {
-    const auto t = static_cast<std::size_t>(fr.tri);
-    Interpolants& ip = tri[t];
-    if (!done[t]) {
-      done[t] = true;
-      const SamplePoints sp = sample_points(f, fr.tri, quadratic);
-      const int step = quadratic ? 1 : 2;  // linear: the vertices (samples 0, 2, 4) only
-      if (env) {
-        // (u, v) of the reflected view vector, and the Gouraud diffuse colour per channel.
-        std::array<double, 6> u{}, v{}, d[3]{};
-        for (int k = 0; k < 6; k += step) {
-          const Vec3 nv = sp.n[k], view = f.lighting.v_at(sp.p[k]);
-          const texmap::Uv uv = texmap::sphere_map_uv(to_eye(f, 2 * dot(nv, view) * nv - view));
-          u[k] = uv.u;
-          v[k] = uv.v;
-          std::vector<Amounts> diffuse;
-          for (const Light& l : lights) {
-            diffuse.push_back({std::max(0.0, dot(nv, Lighting::l_at(l, sp.p[k]))), 0});
-          }
-          const Vec3 c = clamp01(combine(material, lights, diffuse));
-          for (int ch = 0; ch < 3; ++ch) d[ch][k] = channel(c, ch);
-        }
-        ip.add(u, quadratic);
-        ip.add(v, quadratic);
-        for (const auto& dc : d) ip.add(dc, quadratic);
-      } else {
-        // Per light: (u, v) in the diffuse plane (normal L) and in the specular one (normal H).
-        for (const Light& l : lights) {
-          std::array<double, 6> q[4]{};
-          for (int k = 0; k < 6; k += step) {
-            const Vec3 ld = Lighting::l_at(l, sp.p[k]);
-            const Vec3 h = normalized(ld + f.lighting.v_at(sp.p[k]));
-            const texmap::Uv du = texmap::blinn_uv(sp.n[k], ld, f.cam_up, f.cam_right);
-            const texmap::Uv su = texmap::blinn_uv(sp.n[k], h, f.cam_up, f.cam_right);
-            q[0][k] = du.u;
-            q[1][k] = du.v;
-            q[2][k] = su.u;
-            q[3][k] = su.v;
-          }
-          for (const auto& r : q) ip.add(r, quadratic);
-        }
-      }
-    }
-    Vec3 c;
-    if (env) {
-      c = {ip.at(2, fr.st), ip.at(3, fr.st), ip.at(4, fr.st)};
-      const texmap::Uv uv{ip.at(0, fr.st), ip.at(1, fr.st)};
-      for (std::size_t k = 0; k < lights.size(); ++k) {
-        c = c + mul(lights[k].colour, fr.ks * tex[k].sample(uv, to.filter));
-      }
-    } else {
-      for (std::size_t k = 0; k < lights.size(); ++k) {
-        a[k] = {tex[0].sample(ip.at(4 * k, fr.st), ip.at(4 * k + 1, fr.st), to.filter),
-                tex[1].sample(ip.at(4 * k + 2, fr.st), ip.at(4 * k + 3, fr.st), to.filter)};
-      }
-      c = combine(fr, lights, a);
-    }
-    img.at(fr.x, fr.y) = to_rgb8(c);
-  }
-  return img;
-}
-
-// ---- Bishop-Weimer Fast Phong (seeds 000 and 003) ----
-// Per triangle and light, N·L/|N| and N·H/|N| as their Taylor quadratics about the centroid
-// (fast_phong::taylor), with L and H fixed at the centroid (Bishop and Weimer put light and
-// eye at infinity); diffuse max(T_L, 0), specular max(T_H, 0)^(4n) (their table lookup).
-Image fast_phong_float(const Frame& f) {
-  const std::vector<Light>& lights = f.lighting.lights;
-  const double n4 = 4 * f.material.shininess;
-  std::vector<std::vector<std::pair<quad::Coeffs, quad::Coeffs>>> tri(f.geometry.triangles.size());
-  std::vector<Amounts> a(lights.size());
-  Image img = blank(f);
-  for (const Fragment& fr : f.fragments) {
-    auto& terms = tri[static_cast<std::size_t>(fr.tri)];
-    if (terms.empty()) {
-      const auto& idx = f.geometry.triangles[static_cast<std::size_t>(fr.tri)];
-      const Vec3 n0 = f.geometry.normals[idx[0]], n1 = f.geometry.normals[idx[1]],
-                 n2 = f.geometry.normals[idx[2]];
-      const Vec3 pc = (f.geometry.positions[idx[0]] + f.geometry.positions[idx[1]] +
-                       f.geometry.positions[idx[2]]) *
-                      (1.0 / 3);
-      try {
-        for (const Light& l : lights) {
-          const Vec3 ld = Lighting::l_at(l, pc);
-          terms.emplace_back(fast_phong::taylor(n0, n1, n2, ld),
-                             fast_phong::taylor(n0, n1, n2, normalized(ld + f.lighting.v_at(pc))));
-        }
-      } catch (const Error& e) {
-        throw Error(fmt::format("scene '{}', triangle {}: {}", f.scene, fr.tri, e.what()));
-      }
-    }
-    for (std::size_t k = 0; k < lights.size(); ++k) {
-      const double d = quad::eval_st(terms[k].first, fr.st);
-      const double h = quad::eval_st(terms[k].second, fr.st);
-      a[k] = {std::max(0.0, d), h > 0 ? std::pow(h, n4) : 0.0};
-    }
-    img.at(fr.x, fr.y) = to_rgb8(combine(fr, lights, a));
-  }
-  return img;
-}
-
-// ---- Lai-Tai Fence and highlight-track shading (seed 003, section 2) ----
-// Per span: Phong (the reference lighting, clamped like every sample colour) at exact normals
-// on the sample pixels — the span's two ends (Fence: the triangle's edges) and, for the
-// highlight track, the pixel nearest each light's track point — and the colour interpolated
-// linearly between neighbouring samples. Lai and Tai put light and eye at infinity, so H is one
-// vector per triangle; for a local light or viewer phongsim starts from H at the centroid and
-// moves H to the track point found, twice (with H constant that changes nothing).
-Image fence_float(const Method& m, const Frame& f) {
-  const Fragment material = material_fragment(f);
-  bool local = !f.lighting.view_at_infinity;
-  for (const Light& l : f.lighting.lights) local = local || !l.at_infinity;
-  // Per triangle, built when its first pixel comes (like every per-triangle set-up here): per
-  // row y0.. the sample pixels and their colours, in the shared arrays xs and colours.
-  struct Row {
-    std::uint32_t begin = 0, count = 0;
-  };
-  struct Samples {
-    bool done = false;
-    int y0 = 0;
-    std::size_t rows = 0;  // its first Row
-  };
-  std::vector<Samples> tri(f.geometry.triangles.size());
-  std::vector<Row> rows;
-  std::vector<int> xs;
-  std::vector<Vec3> colours;
-  std::vector<Vec3> h(f.lighting.lights.size());  // per light
-  const auto build = [&](std::size_t t) {
-    if (m.kind == Kind::highlight_track) {
-      const auto& idx = f.geometry.triangles[t];
-      const Vec3 pc = (f.geometry.positions[idx[0]] + f.geometry.positions[idx[1]] +
-                       f.geometry.positions[idx[2]]) *
-                      (1.0 / 3);
-      for (std::size_t k = 0; k < h.size(); ++k) {
-        h[k] = normalized(Lighting::l_at(f.lighting.lights[k], pc) + f.lighting.v_at(pc));
-      }
-    }
-    const auto pv = quad::to_pixels(f.screen[t]);
-    const std::vector<Span> spans = spans_of(f, t);
-    tri[t] = {true, spans.front().y, rows.size()};
-    rows.resize(rows.size() + static_cast<std::size_t>(spans.back().y - spans.front().y + 1));
-    for (const Span& e : spans) {
-      const auto begin = static_cast<std::uint32_t>(xs.size());
-      xs.push_back(e.x0);
-      if (m.kind == Kind::highlight_track && e.x1 > e.x0) {
-        const double per_pixel = 1.0 / (e.x1 - e.x0);
-        const Vec3 dn = (e.s2.n - e.s1.n) * per_pixel;
-        for (std::size_t k = 0; k < h.size(); ++k) {
-          double off = highlight_track_offset(e.s1.n, dn, h[k]);
-          for (int refine = 0; refine < 2 && std::isfinite(off) && local; ++refine) {
-            const Vec3 p = e.s1.p + (off * per_pixel) * (e.s2.p - e.s1.p);  // affine along rows
-            const Vec3 hp =
-                normalized(Lighting::l_at(f.lighting.lights[k], p) + f.lighting.v_at(p));
-            off = highlight_track_offset(e.s1.n, dn, hp);
-          }
-          if (!std::isfinite(off)) continue;
-          const long x = e.x0 + std::lround(off);
-          if (x > e.x0 && x < e.x1) xs.push_back(static_cast<int>(x));
-        }
-      }
-      if (e.x1 != e.x0) xs.push_back(e.x1);
-      std::sort(xs.begin() + begin, xs.end());
-      xs.erase(std::unique(xs.begin() + begin, xs.end()), xs.end());
-      for (std::size_t k = begin; k < xs.size(); ++k) {
-        const int x = xs[k];
-        const Surface sf = x == e.x0 ? e.s1 : x == e.x1 ? e.s2 : surface_at(f, t, pv, x, e.y);
-        colours.push_back(clamp01(shade_float(phong(), f, material, normalized(sf.n), sf.p)));
-      }
-      rows[tri[t].rows + static_cast<std::size_t>(e.y - spans.front().y)] = {
-          begin, static_cast<std::uint32_t>(xs.size() - begin)};
-    }
-  };
-  Image img = blank(f);
-  for (const Fragment& fr : f.fragments) {
-    const auto t = static_cast<std::size_t>(fr.tri);
-    if (!tri[t].done) build(t);
-    const Row& r = rows[tri[t].rows + static_cast<std::size_t>(fr.y - tri[t].y0)];
-    // The last sample at or left of the pixel: its own colour there, a linear step beyond.
-    std::size_t k = r.begin;
-    while (k + 1 < r.begin + r.count && xs[k + 1] <= fr.x) ++k;
-    Vec3 c = colours[k];
-    if (fr.x > xs[k]) {
-      c = c + (fr.x - xs[k]) * ((colours[k + 1] - colours[k]) * (1.0 / (xs[k + 1] - xs[k])));
-    }
-    img.at(fr.x, fr.y) = to_rgb8(c);
-  }
-  return img;
-}
-
 Backend resolve(const Method& m, Backend asked) {
   if (asked == Backend::automatic) return m.info.config.empty() ? Backend::float_ref : Backend::rtl;
   if (asked != Backend::float_ref && m.info.config.empty()) {
@@ -1381,14 +778,16 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
       case Kind::kb_one_vector:
         return kb_float(m, f);
       case Kind::env_map:
+        return texture_image(TextureMethod::env_map, f, texture);
       case Kind::blinn_map:
+        return texture_image(TextureMethod::blinn_map, f, texture);
       case Kind::quad_blinn_map:
-        return texture_float(m, f, texture);
+        return texture_image(TextureMethod::quad_blinn_map, f, texture);
       case Kind::fast_phong:
-        return fast_phong_float(f);
+        return fast_phong_image(f);
       case Kind::fence:
       case Kind::highlight_track:
-        return fence_float(m, f);
+        return fence_image(f, m.kind == Kind::highlight_track);
       default:
         return vertex_float(m, f);
     }
