@@ -704,6 +704,9 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   }
   std::vector<std::string> names =
       o.methods.empty() ? (analytic ? kShinyballsMethods : kMeshMethods) : o.methods;
+  if (names.size() > 1 && std::find(names.begin(), names.end(), "all") != names.end()) {
+    throw Error("--method all stands for every method: give it alone");
+  }
   if (names.size() == 1 && names.front() == "all") {
     // Every method the scene and the backend can use.
     names.clear();

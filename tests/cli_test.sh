@@ -276,6 +276,8 @@ EOT
     printf 'mesh = "cancel.obj"\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/cancel.toml"
     expect_error "scene 'cancel', triangle 0: fast Phong: the interpolated normal vanishes" \
       "$phongsim" render --scene "$tmp/cancel.toml" --method fast-phong --out "$tmp/o"
+    expect_error "--method all stands for every method" \
+      "$phongsim" render --scene triangle --method all,phong --out "$tmp/o"
     expect_error "--rounds 0 is out of range" "$phongsim" bench methods --rounds 0
     expect_error "unknown method 'nonesuch'" "$phongsim" bench methods --method nonesuch
     printf 'mesh = "tri.obj"\nwidht = 3\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/bad.toml"
