@@ -21,8 +21,8 @@
 
 namespace phongsim::shading {
 
-inline constexpr int kSubBits =
-    4;  // subpixel bits of projected vertices (the quad configs' sub_bits)
+// Subpixel bits of projected vertices (the quad configurations' sub_bits).
+inline constexpr int kSubBits = 4;
 inline constexpr std::string_view kShinyballs = "shinyballs";
 
 // ---- The frame: fragments (the visible surface point of each object pixel) ----
@@ -69,16 +69,16 @@ struct Frame {
   std::vector<std::vector<std::pair<int, int>>> coverage;
   Material material;
   std::vector<std::pair<std::string, std::vector<bool>>> regions;  // RenderResult::regions
-
-  // Whether triangle t is the surface visible at pixel (x, y) (a compact array: the scanline
-  // methods ask for every pixel of their spans).
-  [[nodiscard]] bool shows(std::size_t t, int x, int y) const {
-    return seen[static_cast<std::size_t>(y) * width + x] == static_cast<int>(t);
-  }
   // The camera's right and up axes in world space (with lighting.view_dir: eye coordinates x,
   // y, z), and the mesh's bounding-box centre (where the environment map is seen from).
   Vec3 cam_right{1, 0, 0}, cam_up{0, 1, 0};
   Vec3 centre;
+
+  // Whether triangle t is the surface visible at pixel (x, y) (mesh scenes; a compact array:
+  // the scanline methods ask for every pixel of their spans).
+  [[nodiscard]] bool shows(std::size_t t, int x, int y) const {
+    return seen[static_cast<std::size_t>(y) * width + x] == static_cast<int>(t);
+  }
 };
 
 // Lyon's specular.m (seed 002, appendix): spheres of radius m pixels for n = 1, 4, 16, 64, 256,
