@@ -49,6 +49,8 @@ struct Lighting {
   [[nodiscard]] static Vec3 l_at(const Light& l, Vec3 p) {
     return l.at_infinity ? normalized(l.position) : normalized(l.position - p);
   }
+  // The halfway vector (L + V)/|L + V| of light l at p.
+  [[nodiscard]] Vec3 h_at(const Light& l, Vec3 p) const { return normalized(l_at(l, p) + v_at(p)); }
 };
 
 // Everything a method needs: the image frame, the fragments, the mesh in screen space.
@@ -159,6 +161,14 @@ struct SamplePoints {
   std::array<Vec3, 6> p, n;
 };
 [[nodiscard]] SamplePoints sample_points(const Frame& f, int t, bool midpoints = true);
+
+// Triangle t's centroid (world), (p0 + p1 + p2)/3.
+[[nodiscard]] inline Vec3 centroid(const Frame& f, std::size_t t) {
+  const auto& idx = f.geometry.triangles[t];
+  return (f.geometry.positions[idx[0]] + f.geometry.positions[idx[1]] +
+          f.geometry.positions[idx[2]]) *
+         (1.0 / 3);
+}
 
 // Triangle t's surface at pixel (x, y)'s centre: the interpolated normal (not normalized) and
 // position, computed exactly as the fragments' (mesh_frame).

@@ -137,9 +137,7 @@ Image fast_phong_image(const Frame& f) {
       const auto& idx = f.geometry.triangles[static_cast<std::size_t>(fr.tri)];
       const Vec3 n0 = f.geometry.normals[idx[0]], n1 = f.geometry.normals[idx[1]],
                  n2 = f.geometry.normals[idx[2]];
-      const Vec3 pc = (f.geometry.positions[idx[0]] + f.geometry.positions[idx[1]] +
-                       f.geometry.positions[idx[2]]) *
-                      (1.0 / 3);
+      const Vec3 pc = centroid(f, static_cast<std::size_t>(fr.tri));
       try {
         for (const Light& l : lights) {
           const Vec3 ld = Lighting::l_at(l, pc);
@@ -181,13 +179,8 @@ Image fence_image(const Frame& f, bool highlight_track) {
   std::vector<Vec3> h(f.lighting.lights.size());  // per light
   const auto build = [&](std::size_t t) {
     if (highlight_track) {
-      const auto& idx = f.geometry.triangles[t];
-      const Vec3 pc = (f.geometry.positions[idx[0]] + f.geometry.positions[idx[1]] +
-                       f.geometry.positions[idx[2]]) *
-                      (1.0 / 3);
-      for (std::size_t k = 0; k < h.size(); ++k) {
-        h[k] = normalized(Lighting::l_at(f.lighting.lights[k], pc) + f.lighting.v_at(pc));
-      }
+      const Vec3 pc = centroid(f, t);
+      for (std::size_t k = 0; k < h.size(); ++k) h[k] = f.lighting.h_at(f.lighting.lights[k], pc);
     }
     const auto pv = quad::to_pixels(f.screen[t]);
     const std::vector<Span> spans = spans_of(f, t);
@@ -203,9 +196,7 @@ Image fence_image(const Frame& f, bool highlight_track) {
           double off = highlight_track_offset(e.s1.n, dn, h[k]);
           for (int refine = 0; refine < 2 && std::isfinite(off) && local; ++refine) {
             const Vec3 p = e.s1.p + (off * per_pixel) * (e.s2.p - e.s1.p);  // affine along rows
-            const Vec3 hp =
-                normalized(Lighting::l_at(f.lighting.lights[k], p) + f.lighting.v_at(p));
-            off = highlight_track_offset(e.s1.n, dn, hp);
+            off = highlight_track_offset(e.s1.n, dn, f.lighting.h_at(f.lighting.lights[k], p));
           }
           if (!std::isfinite(off)) continue;
           const long x = e.x0 + std::lround(off);
