@@ -1,6 +1,6 @@
 # What each pipeline's RTL is made of, and how one configuration of it becomes a plugin (a shared
-# module the phongsim tools dlopen, see sim/rtl_library.h). Used by the main build for configs/
-# and by sim/rtl_build/ for configurations Verilated on demand, so both build the same way.
+# module the phongsim tools dlopen, see sim/cosim/rtl_library.h). Used by the main build for configs/
+# and by sim/cosim/rtl_build/ for configurations Verilated on demand, so both build the same way.
 #
 # Requires PHONGSIM_SOURCE_DIR; call phongsim_find_rtl_tools() before adding plugins.
 
@@ -114,7 +114,7 @@ function(phongsim_add_rtl_plugin TARGET PIPELINE CONFIG OUTPUT_DIR)
   string(REPLACE ";" " " gflags_text "${gflags}")
   set(top ${PHONGSIM_RTL_${PIPELINE}_TOP})
 
-  add_library(${TARGET} MODULE "${PHONGSIM_SOURCE_DIR}/sim/rtl/${PIPELINE}_dut.cpp")
+  add_library(${TARGET} MODULE "${PHONGSIM_SOURCE_DIR}/sim/pipelines/${PIPELINE}_dut.cpp")
   set_target_properties(${TARGET} PROPERTIES
     PREFIX ""
     LIBRARY_OUTPUT_DIRECTORY "${OUTPUT_DIR}"

@@ -4,10 +4,11 @@
 
 #include <toml++/toml.h>
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
-#include "model/error.h"
+#include "base/error.h"
 
 namespace phongsim {
 namespace {
@@ -164,6 +165,65 @@ void Config::check_all_used() const {
     throw Error(fmt::format("{}:{}: {}: unknown key for pipeline {}", origin_, first->line, where,
                             pipeline_));
   }
+}
+
+namespace {
+
+std::string upper_camel(std::string_view key) {
+  std::string out;
+  bool up = true;
+  for (const char c : key) {
+    if (c == '_') {
+      up = true;
+      continue;
+    }
+    out += up ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
+    up = false;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<RtlParam> Config::rtl_parameters() const {
+  std::vector<RtlParam> params;
+  const auto table = [&](const char* name) -> const std::map<std::string, Entry>& {
+    static const std::map<std::string, Entry> empty;
+    const auto t = tables_.find(name);
+    return t == tables_.end() ? empty : t->second;
+  };
+  for (const auto& [key, e] : table("format")) {
+    fx::Format f;
+    try {
+      f = fx::Format::parse(e.text);
+    } catch (const Error& err) {
+      throw Error(fmt::format("{}:{}: [format] {}: {}", origin_, e.line, key, err.what()));
+    }
+    params.push_back(
+        {upper_camel(key) + "Fmt", (f.is_signed ? 65536 : 0) + f.int_bits * 256 + f.frac_bits});
+  }
+  for (const auto& [key, e] : table("mode")) {
+    std::int64_t code = 0;
+    try {
+      code = static_cast<std::int64_t>(fx::parse_round(e.text));
+    } catch (const Error&) {
+      try {
+        code = static_cast<std::int64_t>(fx::parse_overflow(e.text));
+      } catch (const Error&) {
+        throw Error(
+            fmt::format("{}:{}: [mode] {}: unknown mode '{}'", origin_, e.line, key, e.text));
+      }
+    }
+    params.push_back({upper_camel(key), code});
+  }
+  for (const auto& [key, e] : table("param")) {
+    if (!e.is_integer) {
+      throw Error(
+          fmt::format("{}:{}: [param] {}: '{}' is not an integer", origin_, e.line, key, e.text));
+    }
+    params.push_back({upper_camel(key), e.integer});
+  }
+  return params;
 }
 
 void Config::fail(const std::string& message) const {

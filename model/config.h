@@ -1,6 +1,6 @@
 // Named width configuration: one TOML file in configs/<pipeline>/<name>.toml is the single source
-// of a pipeline's formats and modes for both the model (read here) and the RTL (turned into
-// Verilator -G parameters by scripts/config_gflags.py, by the same mechanical rule).
+// of a pipeline's formats and modes for both the model (read here) and the RTL (rtl_parameters():
+// one mechanical rule, which Verilation, lint and synthesis all use).
 //
 //   pipeline = "lirp"                 # which pipeline the file configures
 //   description = "..."               # one line for listings and reports
@@ -20,10 +20,18 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "model/fixed.h"
 
 namespace phongsim {
+
+// One parameter of the pipeline's top module.
+struct RtlParam {
+  std::string name;  // UpperCamelCase: [mode] out_round -> OutRound, [format] p -> PFmt
+  std::int64_t value;
+  bool operator==(const RtlParam&) const = default;
+};
 
 class Config {
  public:
@@ -48,6 +56,14 @@ class Config {
                                   std::initializer_list<std::string_view> allowed) const;
   [[nodiscard]] std::int64_t setup_integer(const std::string& key, std::int64_t lo,
                                            std::int64_t hi) const;
+
+  // The top module's parameters, in a fixed order ([format], [mode], [param]; keys sorted):
+  //   [format] p = "S1.10"           ->  PFmt = fx_pkg format word (signed*65536 + int*256 + frac)
+  //   [mode]   out_round = "half_up" ->  OutRound = the fx_pkg encoding of the mode
+  //   [param]  k = 2                 ->  K = 2
+  // [setup] keys have no RTL effect. Validation (widths, required keys) is the model's job; this
+  // throws Error only for what it cannot translate. Marks no key as used.
+  [[nodiscard]] std::vector<RtlParam> rtl_parameters() const;
 
   // Throws Error for the first key in the file that no accessor asked for.
   void check_all_used() const;

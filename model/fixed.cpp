@@ -6,7 +6,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "model/error.h"
+#include "base/error.h"
 
 namespace phongsim::fx {
 namespace detail {

@@ -8,7 +8,7 @@
 
 #include "model/config.h"
 #include "model/kb.h"
-#include "model/kb_float.h"
+#include "ref/kb_float.h"
 
 namespace phongsim {
 

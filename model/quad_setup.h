@@ -1,5 +1,5 @@
 // Setup for the quadratic colour interpolator (model/quad.h): from a triangle's subpixel
-// vertices and its colour coefficients (eq. 4.1's C0..C5 per channel, model/quad_float.h) to the
+// vertices and its colour coefficients (eq. 4.1's C0..C5 per channel, ref/quad_float.h) to the
 // walker's program words. Its own rounding is part of the specification (docs/quad.md), so model
 // and RTL start from identical words.
 #pragma once
@@ -7,7 +7,7 @@
 #include <array>
 
 #include "model/quad.h"
-#include "model/quad_float.h"
+#include "ref/quad_float.h"
 
 namespace phongsim {
 

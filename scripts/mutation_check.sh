@@ -3,7 +3,7 @@
 # one with a first-failure report. A verification that cannot fail proves nothing.
 #
 # usage: scripts/mutation_check.sh BUILD_DIR [MUTANT...]     (default: every mutant)
-# Each mutant: a copy of the sources with one sed edit, Verilated through sim/rtl_build into a
+# Each mutant: a copy of the sources with one sed edit, Verilated through sim/cosim/rtl_build into a
 # scratch directory, then `phongsim cosim --rtl-plugin --trace` on the mutant's configuration
 # under random source and sink stalls. Caught means: exit 1, a first-failure report with the
 # reproduce command, and a waveform of the cycles before the failure. Exit 0 only if every
@@ -55,7 +55,7 @@ for m in "${mutants[@]}"; do
   fi
   echo "mutant $name ($config): $what"
   pipeline=$(basename "$(dirname "$config")")
-  if ! { cmake -S "$tree/sim/rtl_build" -B "$work/$name/build" -DCMAKE_BUILD_TYPE=Release \
+  if ! { cmake -S "$tree/sim/cosim/rtl_build" -B "$work/$name/build" -DCMAKE_BUILD_TYPE=Release \
            -DPHONGSIM_SOURCE_DIR="$tree" -DPHONGSIM_PIPELINE="$pipeline" \
            -DPHONGSIM_CONFIG="$src/$config" \
            -DPHONGSIM_VERILATED_RUNTIME="$build/libphongsim_verilated.so" &&

@@ -9,7 +9,7 @@ packages=(
   libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
   python3                             # 3.11: tomllib turns configs into -G parameters
   yosys                               # synthesis checks (no latches) of every RTL top
-  nextpnr-ice40                       # iCE40 place and route: fmax of a configuration (sim/synth.h)
+  nextpnr-ice40                       # iCE40 place and route: fmax of a configuration (sim/explore/synth.h)
   clang-format                        # style check in the test suite
 )
 

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <string>
 
+#include "base/error.h"
 #include "model/config.h"
-#include "model/error.h"
 #include "model/fixed.h"
 #include "model/lirp.h"
-#include "sim/pipelines.h"
+#include "sim/pipelines/registry.h"
 
 namespace {
 

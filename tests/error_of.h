@@ -6,7 +6,7 @@
 #include <exception>
 #include <string>
 
-#include "model/error.h"
+#include "base/error.h"
 
 namespace phongsim::testing {
 

@@ -24,7 +24,7 @@
 #include <tuple>
 #include <vector>
 
-#include "model/error.h"
+#include "base/error.h"
 #include "tests/fx_reference.h"
 
 // Lets gtest print formats readably in parameterized test names and assertion messages.

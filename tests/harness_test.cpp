@@ -24,12 +24,12 @@
 #include "model/config.h"
 #include "model/fixed.h"
 #include "model/lirp.h"
-#include "sim/cosim.h"
-#include "sim/harness.h"
-#include "sim/pipelines.h"
-#include "sim/rtl_dut.h"
-#include "sim/rtl_library.h"
-#include "sim/stall.h"
+#include "sim/cosim/cosim.h"
+#include "sim/cosim/harness.h"
+#include "sim/cosim/rtl_dut.h"
+#include "sim/cosim/rtl_library.h"
+#include "sim/cosim/stall.h"
+#include "sim/pipelines/registry.h"
 
 namespace {
 
@@ -283,7 +283,8 @@ class Cosim : public testing::Test {
     const phongsim::DutFactory factory = [&] {
       return DutPtr(new FakeDut(formats_, kLatency, fault, probe), DutDeleter{});
     };
-    return phongsim::cosim(lirp_, cfg_, *model_, factory, o);
+    const phongsim::CosimSubject subject{"lirp", cfg_, *model_, stimulus_, true, factory};
+    return phongsim::cosim(subject, o);
   }
 
   std::vector<std::int64_t> Inputs(std::uint64_t index) const {

@@ -1,7 +1,7 @@
 // Image utilities: PNG bytes against the PNG specification (signature, IHDR, CRCs, all five
 // filter types through a PNG built here by hand), atomic writes and read errors, Vlasic's
 // difference image and metrics on hand-computed images, text boxes, grids and plots.
-#include "sim/image.h"
+#include "sim/render/image.h"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-#include "model/error.h"
+#include "base/error.h"
 
 namespace phongsim {
 namespace {

@@ -5,7 +5,7 @@
 // Expected values are derived in the comments or computed here by independent means (plain
 // trapezoid sums, dense grids, eq. (1)'s trigonometric form); measured bounds say where they were
 // measured and how much margin they keep.
-#include "model/kb_float.h"
+#include "ref/kb_float.h"
 
 #include <gtest/gtest.h>
 
@@ -19,8 +19,8 @@
 #include <random>
 #include <vector>
 
-#include "model/error.h"
-#include "model/vec3.h"
+#include "base/error.h"
+#include "base/vec3.h"
 
 namespace {
 

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
+#include "base/error.h"
 #include "model/config.h"
-#include "model/error.h"
 #include "model/kb.h"
 #include "model/kb_setup.h"
-#include "sim/kb_analysis.h"
-#include "sim/kb_stimulus.h"
-#include "sim/pipelines.h"
+#include "sim/pipelines/kb_analysis.h"
+#include "sim/pipelines/kb_stimulus.h"
+#include "sim/pipelines/registry.h"
 
 namespace phongsim {
 namespace {

@@ -6,7 +6,7 @@
 // of O(1) operands amplified by at most the exponent 4n = 16 of the Blinn row (or 2^k = 8 of
 // f_3), i.e. below 30 * 16 * 2^-53 = 5e-14; 1e-12 leaves a factor 20 of margin and is still far
 // below any modelling difference we want to detect.
-#include "model/lyon_float.h"
+#include "ref/lyon_float.h"
 
 #include <gtest/gtest.h>
 
@@ -20,8 +20,8 @@
 #include <string_view>
 #include <vector>
 
-#include "model/error.h"
-#include "model/vec3.h"
+#include "base/error.h"
+#include "base/vec3.h"
 
 namespace {
 

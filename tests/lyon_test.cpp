@@ -5,12 +5,12 @@
 #include <cmath>
 #include <string>
 
+#include "base/error.h"
 #include "model/config.h"
-#include "model/error.h"
 #include "model/lyon.h"
-#include "sim/lyon_analysis.h"
-#include "sim/lyon_stimulus.h"
-#include "sim/pipelines.h"
+#include "sim/pipelines/lyon_analysis.h"
+#include "sim/pipelines/lyon_stimulus.h"
+#include "sim/pipelines/registry.h"
 
 namespace phongsim {
 namespace {

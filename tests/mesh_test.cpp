@@ -19,10 +19,10 @@
 #include <utility>
 #include <vector>
 
-#include "model/error.h"
-#include "model/vec3.h"
-#include "sim/mesh.h"
-#include "sim/scene.h"
+#include "base/error.h"
+#include "base/vec3.h"
+#include "sim/render/mesh.h"
+#include "sim/render/scene.h"
 
 namespace {
 

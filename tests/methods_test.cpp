@@ -1,6 +1,6 @@
 // The float references of the seeds' other methods: Vlasic's texture coordinates and textures
-// (model/texture_maps.h), Bishop-Weimer's Taylor expansion (model/fast_phong.h) and Lai-Tai's
-// highlight-track point (model/highlight_track.h). Renders of them: tests/render_test.cpp.
+// (ref/texture_maps.h), Bishop-Weimer's Taylor expansion (ref/fast_phong.h) and Lai-Tai's
+// highlight-track point (ref/highlight_track.h). Renders of them: tests/render_test.cpp.
 #include <gtest/gtest.h>
 
 #include "tests/error_of.h"
@@ -8,9 +8,9 @@
 #include <cmath>
 #include <random>
 
-#include "model/fast_phong.h"
-#include "model/highlight_track.h"
-#include "model/texture_maps.h"
+#include "ref/fast_phong.h"
+#include "ref/highlight_track.h"
+#include "ref/texture_maps.h"
 
 namespace phongsim {
 namespace {

@@ -6,7 +6,7 @@
 // eq. 3.5 for eq. 4.3; for coverage, the symbolic perturbation the top-left rule is equivalent to
 // (the point P + (ε, ε²), evaluated exactly in __int128 with ε = 1/K), and point-in-polygon
 // against the outline of a mesh (its edges used by one triangle only).
-#include "model/quad_float.h"
+#include "ref/quad_float.h"
 
 #include <gtest/gtest.h>
 
@@ -21,8 +21,8 @@
 #include <utility>
 #include <vector>
 
-#include "model/error.h"
-#include "model/vec3.h"
+#include "base/error.h"
+#include "base/vec3.h"
 
 namespace {
 

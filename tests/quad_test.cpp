@@ -1,20 +1,20 @@
 // The quadratic colour interpolator: the walker model's coverage against the exact reference
-// rasterizer (model/quad_float.h) on meshes and random triangles, the setup against the exact
+// rasterizer (ref/quad_float.h) on meshes and random triangles, the setup against the exact
 // polynomial, the guard-bit bound, the RTL's cycle cost, and configuration refusals.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
 
+#include "base/error.h"
 #include "model/config.h"
-#include "model/error.h"
 #include "model/quad.h"
 #include "model/quad_setup.h"
-#include "sim/harness.h"
-#include "sim/pipelines.h"
-#include "sim/quad_analysis.h"
-#include "sim/quad_stimulus.h"
-#include "sim/rtl_library.h"
+#include "sim/cosim/harness.h"
+#include "sim/cosim/rtl_library.h"
+#include "sim/pipelines/quad_analysis.h"
+#include "sim/pipelines/quad_stimulus.h"
+#include "sim/pipelines/registry.h"
 
 namespace phongsim {
 namespace {

@@ -13,9 +13,9 @@
 #include <fstream>
 #include <set>
 
-#include "model/error.h"
-#include "model/quad_float.h"
-#include "sim/render.h"
+#include "base/error.h"
+#include "ref/quad_float.h"
+#include "sim/render/render.h"
 
 namespace phongsim {
 namespace {
@@ -370,7 +370,7 @@ TEST(RenderMethods, EnvironmentMapCannotShowAPointLight) {
   const std::filesystem::path dir =
       std::filesystem::path(::testing::TempDir()) / "render_test_envmap";
   std::filesystem::create_directories(dir);
-  // The triangle scene (sim/scene.h) with its light at (0.5, 0.5, 2), and twice as far from
+  // The triangle scene (sim/render/scene.h) with its light at (0.5, 0.5, 2), and twice as far from
   // the triangle's centre (0, 0.25, 0) in the same direction.
   std::vector<RenderResult> r;
   for (const char* light : {"[0.5, 0.5, 2]", "[1, 0.75, 4]"}) {

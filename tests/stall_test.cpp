@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "model/error.h"
-#include "sim/rng.h"
-#include "sim/stall.h"
+#include "base/error.h"
+#include "base/rng.h"
+#include "sim/cosim/stall.h"
 
 namespace {
 

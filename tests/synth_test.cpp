@@ -11,9 +11,9 @@
 #include <sstream>
 #include <string>
 
+#include "base/error.h"
 #include "model/config.h"
-#include "model/error.h"
-#include "sim/synth.h"
+#include "sim/explore/synth.h"
 #include "tests/error_of.h"
 
 namespace {

@@ -1,0 +1,55 @@
+// Counter-based random numbers: every (seed, stream, index) starts an independent generator, so
+// vector i of a run can be regenerated on its own and every failure reproduces from
+// (configuration, seed, vector index).
+#pragma once
+
+#include <cstdint>
+
+namespace phongsim {
+
+class Rng {
+ public:
+  Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+    state_ = seed;
+    state_ = mix(state_ ^ mix(stream + 0x51ed2701f3a5c7b9ULL) ^ mix(~index));
+  }
+
+  // A plain splitmix64 sequence from `state` (the float references' test meshes use it).
+  static Rng from_state(std::uint64_t state) { return Rng(state); }
+
+  // splitmix64 (Steele, Lea, Flood 2014).
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+
+  // Uniform in [0, n) for n >= 1 (multiply-shift; the bias is below 2^-64 * n).
+  std::uint64_t below(std::uint64_t n) {
+    return static_cast<std::uint64_t>((static_cast<unsigned __int128>(next()) * n) >> 64);
+  }
+
+  // Uniform in [0, 1).
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+  // Uniform in [-1, 1).
+  double symmetric() { return 2 * uniform() - 1; }
+
+  bool chance(double p) { return uniform() < p; }
+  bool coin() { return (next() >> 63) != 0; }
+
+ private:
+  static std::uint64_t mix(std::uint64_t x) {
+    Rng r(x);
+    return r.next();
+  }
+  explicit Rng(std::uint64_t raw_state) : state_(raw_state) {}
+
+  std::uint64_t state_;
+};
+
+// Stream identifiers, so stimulus and the two stall patterns never share random numbers.
+enum RngStream : std::uint64_t { kStimulusStream = 1, kSourceStream = 2, kSinkStream = 3 };
+
+}  // namespace phongsim

@@ -1,0 +1,72 @@
+// Co-simulation: the model and the Verilated RTL get identical transactions; a scoreboard
+// compares every output field bit-exactly and in order. Stops at the first mismatch, dropped,
+// duplicated or reordered output, deadlock or handshake violation, with a report that names
+// configuration, seed, vector index and cycle and the command that reproduces it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "model/config.h"
+#include "model/pipeline.h"
+#include "sim/cosim/rtl_library.h"
+#include "sim/cosim/stall.h"
+#include "sim/cosim/stimulus.h"
+
+namespace phongsim {
+
+struct CosimOptions {
+  std::uint64_t seed = 1;
+  std::uint64_t random_vectors = 100000;  // after the directed corners
+  bool directed = true;
+  std::optional<std::uint64_t> only_index;  // run this one vector (directed or random) alone
+  StallPattern source;                      // source idle pattern
+  StallPattern sink;                        // sink backpressure pattern
+  std::string trace_path;                   // FST waveform; empty = none
+  std::uint64_t trace_window = 1000;        // cycles before a failure (or from the start)
+  std::uint64_t timeout = 0;                // deadlock timeout in cycles; 0 = harness default
+  std::uint64_t measure_vectors = 1000;     // stall-free run that measures throughput/latency
+};
+
+struct CosimReport {
+  std::string pipeline;
+  std::string config_name;
+  std::string config_path;
+  CosimOptions options;
+  std::uint64_t directed = 0;  // directed vectors in the main run
+  std::uint64_t random = 0;    // random vectors in the main run
+  std::uint64_t vectors = 0;   // inputs accepted by the RTL in the main run
+  std::uint64_t outputs = 0;   // outputs compared in the main run
+  std::uint64_t mismatches = 0;
+  std::uint64_t cycles = 0;  // main run
+  // From the stall-free measurement run (0 when it did not run).
+  double throughput = 0.0;  // outputs per clock in steady state
+  std::uint64_t latency_min = 0;
+  std::uint64_t latency_max = 0;
+  bool passed = false;
+  std::string failure_kind;   // "", "mismatch", "unexpected output", "deadlock", "protocol"
+  std::string failure;        // multi-line first-failure report
+  std::string trace_written;  // waveform path, when one was written
+
+  [[nodiscard]] std::string summary() const;  // one line
+};
+
+using DutFactory = std::function<DutPtr()>;
+
+// What a co-simulation runs: one configuration's model and stimulus against DUTs from make_dut.
+struct CosimSubject {
+  std::string pipeline;  // its name, for reports
+  const Config& cfg;
+  PipelineModel& model;
+  const Stimulus& stimulus;
+  // True when every output depends only on its own input vector, so one vector can be re-run
+  // alone (the failure report then offers that command).
+  bool independent_vectors = true;
+  DutFactory make_dut;
+};
+
+CosimReport cosim(const CosimSubject& subject, const CosimOptions& options);
+
+}  // namespace phongsim

@@ -1,0 +1,25 @@
+// Golden vector files: evaluate a CSV of input vectors through the model or the RTL and write
+// the outputs as CSV. The same input through either backend gives byte-identical files.
+//
+// Input: a header row naming every input field of the pipeline (any order), then one row per
+// vector. Values are raw integers in the field's format (decimal, or 0x hex for the bit
+// pattern), or reals with `real` (rounded to nearest, ties to even; out of range is an error).
+// Empty lines and lines starting with '#' are skipped.
+// Output: a header row of the output fields, one row per output transaction in order (for
+// one-output-per-vector pipelines such as LIRP, row i belongs to input row i); raw integers, or
+// reals with `real`.
+#pragma once
+
+#include <filesystem>
+
+#include "model/pipeline.h"
+#include "sim/cosim/cosim.h"
+
+namespace phongsim {
+
+// Returns the number of output rows. `make_dut` empty means the model backend. Throws Error
+// naming file, line and column for malformed input; writes nothing then.
+std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
+                     const std::filesystem::path& in, const std::filesystem::path& out, bool real);
+
+}  // namespace phongsim

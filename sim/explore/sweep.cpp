@@ -1,0 +1,877 @@
+#include "sim/explore/sweep.h"
+
+#include <fmt/format.h>
+
+#include <toml++/toml.h>
+#include <unistd.h>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "base/error.h"
+#include "base/file_util.h"
+#include "base/output_file.h"
+#include "base/paths.h"
+#include "base/rng.h"
+#include "model/kb.h"
+#include "model/kb_setup.h"
+#include "model/lirp.h"
+#include "model/lyon.h"
+#include "model/quad.h"
+#include "sim/pipelines/kb_stimulus.h"
+#include "sim/pipelines/lyon_analysis.h"
+#include "sim/pipelines/quad_analysis.h"
+#include "sim/pipelines/quad_stimulus.h"
+#include "sim/pipelines/registry.h"
+#include "sim/render/image.h"
+#include "sim/render/render.h"
+
+namespace phongsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+double lsb(fx::Format f) { return std::ldexp(1.0, -f.frac_bits); }
+
+int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+
+[[noreturn]] void fail_at(const fs::path& file, const toml::node& n, const std::string& what) {
+  throw Error(fmt::format("{}:{}: {}", file.string(), line_of(n), what));
+}
+
+toml::table parse_file(const fs::path& file) {
+  try {
+    return toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
+  }
+}
+
+// A path in a sweep file: relative to the file's directory, else to the source tree.
+fs::path resolve(const fs::path& file, const std::string& p) {
+  const fs::path near = file.parent_path() / p;
+  if (fs::exists(near)) return near;
+  const fs::path tree = data_root() / p;
+  if (fs::exists(tree)) return tree;
+  throw Error(fmt::format("{}: {} does not exist (looked next to the file and in the source tree)",
+                          file.string(), p));
+}
+
+std::string literal(const toml::node& n) {
+  std::ostringstream s;
+  if (const auto* v = n.as_string()) {
+    s << toml::value<std::string>(v->get());
+  } else if (const auto* i = n.as_integer()) {
+    s << i->get();
+  } else {
+    return "";
+  }
+  return s.str();
+}
+
+// The point's configuration: the base with the axis values replaced.
+std::string point_toml(const fs::path& base,
+                       const std::vector<std::pair<std::string, std::string>>& values,
+                       const std::string& header, const std::string& description) {
+  toml::table t = parse_file(base);
+  if (!description.empty()) t.insert_or_assign("description", description);
+  for (const auto& [key, value] : values) {
+    const auto dot = key.find('.');
+    const std::string section = key.substr(0, dot);
+    const std::string name = key.substr(dot + 1);
+    auto* table = t[section].as_table();
+    if (table == nullptr || !table->contains(name)) {
+      throw Error(fmt::format("{}: has no [{}] {} to sweep", base.string(), section, name));
+    }
+    const toml::table v = toml::parse("v = " + value);
+    table->insert_or_assign(name, *v.get("v"));
+  }
+  std::ostringstream s;
+  s << header << t << "\n";
+  return s.str();
+}
+
+std::string describe(const std::vector<std::pair<std::string, std::string>>& values) {
+  std::string d;
+  for (const auto& [k, v] : values) d += fmt::format("{}{}={}", d.empty() ? "" : ", ", k, v);
+  return d;
+}
+
+// `method` on `scene` through the unit configuration `config` (model backend) against float
+// Phong.
+ImageMetrics scene_metrics(const std::string& scene, const std::string& method, int size,
+                           const fs::path& config) {
+  RenderOptions o;
+  o.scene = scene;
+  o.methods = {method};
+  o.backend = Backend::model;
+  o.size = size;
+  o.unit_config = config.string();
+  return render(o, [](std::string_view, std::uint64_t, std::uint64_t) {}).results.front().metrics;
+}
+
+std::string unquote(std::string v) {  // TOML string literals: "..." or '...'
+  if (v.size() >= 2 && (v.front() == '"' || v.front() == '\'')) return v.substr(1, v.size() - 2);
+  return v;
+}
+
+}  // namespace
+
+// ---- Errors against the float references ----
+
+ModelError model_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
+  const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
+  auto model = make_model(pipeline, cfg);
+  ModelError e;
+  double sum = 0;
+  const auto add = [&](double got, double exact, fx::Format f) {
+    const double d = std::abs(got - exact);
+    e.max_abs = std::max(e.max_abs, d);
+    e.max_lsb = std::max(e.max_lsb, d / lsb(f));
+    sum += d / lsb(f);
+    ++e.samples;
+  };
+  if (const auto* lm = dynamic_cast<const LyonModel*>(model.get())) {
+    const LyonOutputError l = lyon_output_error(*lm, samples, seed, /*exact_inputs=*/true);
+    e.max_lsb = l.spec_max;
+    e.mean_lsb = l.spec_mean;
+    e.max_abs = l.spec_max * lsb(lm->formats().spec);
+    e.samples = l.samples;
+    return e;
+  }
+  if (const auto* qm = dynamic_cast<const QuadModel*>(model.get())) {
+    const QuadFormats& f = qm->formats();
+    int triangles = 0;
+    double mean_sum = 0;
+    while (e.samples < samples && triangles < 100000) {
+      const QuadOutputError q = quad_output_error(f, quad_mode(cfg), 10, seed + triangles);
+      triangles += 10;
+      e.max_lsb = std::max(e.max_lsb, q.max);
+      mean_sum += q.mean * static_cast<double>(q.pixels);
+      e.samples += q.pixels;
+    }
+    e.mean_lsb = e.samples == 0 ? 0 : mean_sum / static_cast<double>(e.samples);
+    e.max_abs = e.max_lsb * lsb(f.out);
+    return e;
+  }
+  if (auto* km = dynamic_cast<KbModel*>(model.get())) {
+    const KbFormats& f = km->formats();
+    const KbSetupOptions so = KbSetupOptions::from_config(cfg);
+    const double top = fx::to_real(f.out.max_raw(), f.out);
+    for (std::uint64_t n = 0; e.samples < samples && n < 100000; ++n) {
+      Rng rng(seed, kStimulusStream, n);
+      const KbSpan span = kb_random_span(rng, so, 0);
+      std::vector<std::vector<std::int64_t>> program;
+      try {
+        program = kb_program(span, so.policy, f);
+      } catch (const Error&) {
+        continue;  // more events than the header counts: not a span this configuration takes
+      }
+      km->reset();
+      std::vector<std::int64_t> out;
+      for (const auto& w : program) (void)km->eval(w, out);
+      for (std::size_t i = 0; i < out.size() / 2; ++i) {
+        add(fx::to_real(out[2 * i], f.out),
+            std::clamp(kb_exact(span, static_cast<int>(i)), 0.0, top), f.out);
+      }
+    }
+    e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
+    return e;
+  }
+  if (const auto* lm = dynamic_cast<const LirpModel*>(model.get())) {
+    // Unit-vector components p0, p1 in [-1, 1] and a in [0, 1] as reals: the reference
+    // interpolates them exactly, the model gets them quantized to its input formats.
+    const LirpFormats& f = lm->formats();
+    std::vector<std::int64_t> v(model->inputs().size());
+    std::vector<std::int64_t> out;
+    const double lo = fx::to_real(f.out.min_raw(), f.out);
+    const double hi = fx::to_real(f.out.max_raw(), f.out);
+    const auto q = [](double x, fx::Format fmt) {
+      return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+    };
+    for (std::uint64_t i = 0; i < samples; ++i) {
+      Rng rng(seed, kStimulusStream, i);
+      double p[6];
+      for (int c = 0; c < 6; ++c) {
+        p[c] = 2 * rng.uniform() - 1;
+        v[static_cast<std::size_t>(c)] = q(p[c], f.p);
+      }
+      const double a = rng.uniform();
+      v[6] = q(a, f.a);
+      out.clear();
+      (void)model->eval(v, out);
+      for (int c = 0; c < 3; ++c) {
+        add(fx::to_real(out[static_cast<std::size_t>(c)], f.out),
+            std::clamp(p[c] + a * (p[3 + c] - p[c]), lo, hi), f.out);
+      }
+    }
+    e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
+    return e;
+  }
+  throw Error(fmt::format("no float reference for pipeline '{}'", cfg.pipeline()));
+}
+
+int structural_latency(const Config& cfg) {
+  const auto model = make_model(find_pipeline(cfg.pipeline()), cfg);
+  if (const auto* lm = dynamic_cast<const LyonModel*>(model.get())) return lm->latency();
+  if (cfg.pipeline() == "lirp") return 3;
+  if (cfg.pipeline() == "kb") return 2;    // header word to its first pixel
+  if (cfg.pipeline() == "quad") return 4;  // program to its first pixel (docs/quad.md)
+  return 0;
+}
+
+// ---- Sweep files ----
+
+SweepSpec load_sweep(const fs::path& file) {
+  SweepSpec s;
+  s.file = file;
+  s.name = file.stem().string();
+  const toml::table t = parse_file(file);
+  const std::set<std::string> known{"name",  "base",   "bases", "axes",
+                                    "error", "scenes", "synth", "plot"};
+  for (const auto& [k, v] : t) {
+    if (!known.contains(std::string(k.str()))) {
+      fail_at(file, v,
+              fmt::format("unknown key '{}' (expected name, base or bases, [axes], [error], "
+                          "[scenes], [synth], [plot])",
+                          k.str()));
+    }
+  }
+  if (const auto n = t["name"].value<std::string>()) s.name = *n;
+  if (const auto b = t["base"].value<std::string>()) s.bases.push_back(resolve(file, *b));
+  if (const auto* arr = t["bases"].as_array()) {
+    for (const auto& b : *arr) {
+      const auto p = b.value<std::string>();
+      if (!p) fail_at(file, b, "bases: expected strings");
+      s.bases.push_back(resolve(file, *p));
+    }
+  }
+  if (s.bases.empty())
+    throw Error(fmt::format("{}: no base configuration (base = \"...\")", file.string()));
+  if (const auto* axes = t["axes"].as_table()) {
+    for (const auto& [k, v] : *axes) {
+      SweepAxis axis;
+      axis.key = std::string(k.str());
+      const auto dot = axis.key.find('.');
+      const std::set<std::string> sections{"format", "mode", "param", "setup"};
+      if (dot == std::string::npos || !sections.contains(axis.key.substr(0, dot))) {
+        fail_at(file, v,
+                fmt::format("axis '{}': expected format.<key>, mode.<key>, param.<key> "
+                            "or setup.<key>",
+                            axis.key));
+      }
+      if (const auto* arr = v.as_array()) {
+        for (const auto& x : *arr) {
+          const std::string lit = literal(x);
+          if (lit.empty())
+            fail_at(file, x, fmt::format("axis '{}': values are strings or integers", axis.key));
+          axis.values.push_back(lit);
+        }
+      } else if (const auto* range = v.as_table()) {
+        // { frac = [lo, hi] }: the base's format with lo..hi fraction bits.
+        const auto* fr = (*range)["frac"].as_array();
+        if (axis.key.substr(0, dot) != "format" || fr == nullptr || fr->size() != 2 ||
+            !(*fr)[0].is_integer() || !(*fr)[1].is_integer() || range->size() != 1) {
+          fail_at(file, v,
+                  fmt::format("axis '{}': a range is {{ frac = [lo, hi] }} on a format", axis.key));
+        }
+        const auto lo = (*fr)[0].value<std::int64_t>().value();
+        const auto hi = (*fr)[1].value<std::int64_t>().value();
+        const toml::table base = parse_file(s.bases.front());
+        const auto fmt_text = base["format"][axis.key.substr(dot + 1)].value<std::string>();
+        if (!fmt_text) {
+          fail_at(
+              file, v,
+              fmt::format("axis '{}': {} has no such format", axis.key, s.bases.front().string()));
+        }
+        const fx::Format f = fx::Format::parse(*fmt_text);
+        for (std::int64_t b = lo; b <= hi; ++b) {
+          axis.values.push_back(fmt::format("\"{}{}.{}\"", f.is_signed ? "S" : "", f.int_bits, b));
+        }
+      }
+      if (axis.values.empty()) fail_at(file, v, fmt::format("axis '{}' is empty", axis.key));
+      s.axes.push_back(std::move(axis));
+    }
+  }
+  if (const auto* e = t["error"].as_table()) {
+    for (const auto& [k, v] : *e) {
+      const auto n = v.value<std::int64_t>();
+      if (k.str() == "samples" && n && *n >= 1) {
+        s.samples = static_cast<std::uint64_t>(*n);
+      } else if (k.str() == "seed" && n && *n >= 0) {
+        s.seed = static_cast<std::uint64_t>(*n);
+      } else {
+        fail_at(file, v, fmt::format("[error] {}: expected samples >= 1 or seed >= 0", k.str()));
+      }
+    }
+  }
+  if (const auto* sc = t["scenes"].as_table()) {
+    for (const auto& [k, v] : *sc) {
+      if (k.str() == "size") {
+        const auto n = v.value<std::int64_t>();
+        if (!n || *n < 1 || *n > 2048) fail_at(file, v, "[scenes] size: 1..2048");
+        s.scene_size = static_cast<int>(*n);
+        continue;
+      }
+      const auto m = v.value<std::string>();
+      if (!m) fail_at(file, v, fmt::format("[scenes] {}: expected a method name", k.str()));
+      (void)find_method(*m);
+      s.scenes.push_back({std::string(k.str()), *m});
+    }
+  }
+  if (const auto* sy = t["synth"].as_table()) {
+    for (const auto& [k, v] : *sy) {
+      const auto b = v.value<bool>();
+      if (k.str() == "generic" && b) {
+        s.synth.generic = *b;
+      } else if (k.str() == "ice40" && b) {
+        s.synth.ice40 = *b;
+      } else {
+        fail_at(file, v,
+                fmt::format("[synth] {}: expected generic or ice40 = true/false", k.str()));
+      }
+    }
+  }
+  if (const auto* pl = t["plot"].as_table()) {
+    for (const auto& [k, v] : *pl) {
+      const auto str = v.value<std::string>();
+      if (k.str() == "variant" && str) {
+        s.variant = *str;
+      } else if (k.str() == "area" && str &&
+                 (*str == "cells" || *str == "transistors" || *str == "lut4")) {
+        s.area = *str;
+      } else {
+        fail_at(file, v,
+                fmt::format("[plot] {}: expected variant = \"<axis>\" or area = cells, "
+                            "transistors or lut4",
+                            k.str()));
+      }
+    }
+  }
+  if (!s.variant.empty() && s.variant != "base" &&
+      std::none_of(s.axes.begin(), s.axes.end(),
+                   [&](const SweepAxis& a) { return a.key == s.variant; })) {
+    throw Error(fmt::format("{}: [plot] variant '{}' is not an axis (or \"base\")", file.string(),
+                            s.variant));
+  }
+  if (s.area == "lut4" && !s.synth.ice40) {
+    throw Error(
+        fmt::format("{}: [plot] area = \"lut4\" needs [synth] ice40 = true", file.string()));
+  }
+  if (s.area != "lut4" && (s.synth.generic || s.synth.ice40) && !s.synth.generic) {
+    s.area = "lut4";
+  }
+  return s;
+}
+
+std::vector<SweepPoint> expand(const SweepSpec& spec) {
+  std::vector<SweepPoint> points;
+  std::size_t combos = 1;
+  for (const auto& a : spec.axes) combos *= a.values.size();
+  for (const fs::path& base : spec.bases) {
+    for (std::size_t c = 0; c < combos; ++c) {
+      SweepPoint p;
+      p.index = points.size();
+      p.base = base;
+      std::size_t rest = c;
+      for (std::size_t a = spec.axes.size(); a-- > 0;) {
+        const auto& axis = spec.axes[a];
+        p.values.insert(p.values.begin(), {axis.key, axis.values[rest % axis.values.size()]});
+        rest /= axis.values.size();
+      }
+      const std::string origin =
+          fmt::format("{} point {} ({}{}{})", spec.file.string(), p.index, base.filename().string(),
+                      p.values.empty() ? "" : ": ", describe(p.values));
+      try {
+        p.toml = point_toml(
+            base, p.values,
+            fmt::format("# {} point {}: {}, {}\n", spec.name, p.index, base.string(),
+                        describe(p.values)),
+            fmt::format("sweep {} point {}: {}{}{}", spec.name, p.index, base.stem().string(),
+                        p.values.empty() ? "" : ", ", describe(p.values)));
+        const Config cfg = Config::parse(p.toml, fmt::format("point{:04}.toml", p.index));
+        (void)make_model(find_pipeline(cfg.pipeline()), cfg);
+      } catch (const Error& e) {
+        throw Error(fmt::format("{}: {}", origin, e.what()));
+      } catch (const toml::parse_error& e) {
+        throw Error(fmt::format("{}: {}", origin, e.description()));
+      }
+      points.push_back(std::move(p));
+    }
+  }
+  return points;
+}
+
+PointResult evaluate_point(const SweepSpec& spec, const fs::path& config, std::size_t index,
+                           std::FILE* log) {
+  const auto start = std::chrono::steady_clock::now();
+  const Config cfg = Config::load(config);
+  PointResult r;
+  r.index = index;
+  r.config = config.string();
+  r.error = model_error(cfg, spec.samples, spec.seed);
+  r.latency = structural_latency(cfg);
+  for (const SweepScene& sc : spec.scenes) {
+    const ImageMetrics m = scene_metrics(sc.scene, sc.method, spec.scene_size, config);
+    r.colour_correctness.emplace_back(sc.scene, m.colour_correctness);
+    r.psnr.emplace_back(sc.scene, m.psnr);
+  }
+  if (spec.synth.generic || spec.synth.ice40) {
+    r.synth = synthesize(cfg, spec.synth, log);
+    r.synthesized = true;
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+namespace {
+
+nlohmann::json to_json(const PointResult& r) {
+  nlohmann::json values = nlohmann::json::object();
+  for (const auto& [k, v] : r.values) values[k] = v;
+  nlohmann::json cc = nlohmann::json::object();
+  for (const auto& [k, v] : r.colour_correctness) cc[k] = v;
+  nlohmann::json psnr = nlohmann::json::object();
+  for (const auto& [k, v] : r.psnr)
+    psnr[k] = std::isinf(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+  return {{"index", r.index},
+          {"config", r.config},
+          {"error",
+           {{"max_lsb", r.error.max_lsb},
+            {"mean_lsb", r.error.mean_lsb},
+            {"max_abs", r.error.max_abs},
+            {"samples", r.error.samples}}},
+          {"colour_correctness", cc},
+          {"psnr", psnr},
+          {"synth", r.synthesized ? nlohmann::json{{"cells", r.synth.cells},
+                                                   {"transistors", r.synth.transistors},
+                                                   {"lut4", r.synth.lut4},
+                                                   {"carry", r.synth.carry},
+                                                   {"mac16", r.synth.mac16},
+                                                   {"ff", r.synth.ff},
+                                                   {"fits", r.synth.fits},
+                                                   {"fmax_mhz", r.synth.fmax_mhz},
+                                                   {"cached", r.synth.cached}}
+                                  : nlohmann::json(nullptr)},
+          {"latency", r.latency},
+          {"seconds", r.seconds}};
+}
+
+PointResult from_json(const nlohmann::json& j) {
+  PointResult r;
+  r.index = j.at("index").get<std::size_t>();
+  r.config = j.at("config").get<std::string>();
+  r.error.max_lsb = j.at("error").at("max_lsb").get<double>();
+  r.error.mean_lsb = j.at("error").at("mean_lsb").get<double>();
+  r.error.max_abs = j.at("error").at("max_abs").get<double>();
+  r.error.samples = j.at("error").at("samples").get<std::uint64_t>();
+  for (const auto& [k, v] : j.at("colour_correctness").items())
+    r.colour_correctness.emplace_back(k, v.get<double>());
+  for (const auto& [k, v] : j.at("psnr").items()) {
+    r.psnr.emplace_back(k, v.is_null() ? INFINITY : v.get<double>());
+  }
+  if (!j.at("synth").is_null()) {
+    const auto& s = j.at("synth");
+    r.synthesized = true;
+    r.synth.cells = s.at("cells").get<std::int64_t>();
+    r.synth.transistors = s.at("transistors").get<std::int64_t>();
+    r.synth.lut4 = s.at("lut4").get<std::int64_t>();
+    r.synth.carry = s.at("carry").get<std::int64_t>();
+    r.synth.mac16 = s.at("mac16").get<std::int64_t>();
+    r.synth.ff = s.at("ff").get<std::int64_t>();
+    r.synth.fits = s.at("fits").get<bool>();
+    r.synth.fmax_mhz = s.at("fmax_mhz").get<double>();
+    r.synth.cached = s.at("cached").get<bool>();
+  }
+  r.latency = j.at("latency").get<int>();
+  r.seconds = j.at("seconds").get<double>();
+  return r;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  OutputFile f(path);
+  std::fputs(text.c_str(), f.get());
+  f.commit();
+}
+
+fs::path point_path(const fs::path& out, std::size_t i) {
+  return out / "points" / fmt::format("{:04}.toml", i);
+}
+fs::path result_path(const fs::path& out, std::size_t i) {
+  return out / "results" / fmt::format("{:04}.json", i);
+}
+
+double area_of(const SweepSpec& spec, const PointResult& r) {
+  if (!r.synthesized) return NAN;
+  if (spec.area == "transistors") return static_cast<double>(r.synth.transistors);
+  if (spec.area == "lut4") return static_cast<double>(r.synth.lut4);
+  return static_cast<double>(r.synth.cells);
+}
+
+}  // namespace
+
+void write_point_result(const PointResult& r, const fs::path& path) {
+  write_text(path, to_json(r).dump(2) + "\n");
+}
+
+std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const fs::path& out) {
+  const std::vector<SweepPoint> points = expand(spec);
+  std::error_code ec;
+  fs::create_directories(out / "points", ec);
+  fs::create_directories(out / "results", ec);
+  if (ec) throw Error(fmt::format("cannot create {}: {}", out.string(), ec.message()));
+  const fs::path exe = fs::canonical("/proc/self/exe");
+  const fs::path sweep = fs::absolute(spec.file);
+  std::string jobs;
+  std::string make = "# make -j<N> -f Makefile: every point of the sweep, then merge\nall:";
+  std::string rules;
+  for (const SweepPoint& p : points) {
+    write_text(point_path(out, p.index), p.toml);
+    const std::string cmd =
+        fmt::format("{} sweep point {} --sweep {} --index {} --out {}", exe.string(),
+                    fs::absolute(point_path(out, p.index)).string(), sweep.string(), p.index,
+                    fs::absolute(result_path(out, p.index)).string());
+    jobs += cmd + "\n";
+    make += fmt::format(" results/{:04}.json", p.index);
+    rules += fmt::format("results/{:04}.json:\n\t{}\n", p.index, cmd);
+  }
+  make += fmt::format("\n\t{} sweep merge {} --out {}\n{}", exe.string(), sweep.string(),
+                      fs::absolute(out).string(), rules);
+  write_text(out / "jobs.txt", jobs);
+  write_text(out / "Makefile", make);
+  return points;
+}
+
+std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out) {
+  const std::vector<SweepPoint> points = expand(spec);
+  std::vector<PointResult> results;
+  for (const SweepPoint& p : points) {
+    // The plan in `out` must be this sweep's: same point files, results made from them.
+    const fs::path pp = point_path(out, p.index);
+    if (read_file(pp) != p.toml) {
+      throw Error(
+          fmt::format("{} is not point {} of {} ({}): plan the sweep again into an empty "
+                      "directory",
+                      pp.string(), p.index, spec.file.string(), describe(p.values)));
+    }
+    const fs::path rp = result_path(out, p.index);
+    if (!fs::exists(rp)) {
+      throw Error(fmt::format("point {} ({}) has no result yet: {}", p.index, describe(p.values),
+                              rp.string()));
+    }
+    std::ifstream in(rp);
+    PointResult r;
+    try {
+      r = from_json(nlohmann::json::parse(in));
+    } catch (const std::exception& e) {
+      throw Error(fmt::format("{}: {}", rp.string(), e.what()));
+    }
+    if (fs::weakly_canonical(r.config) != fs::weakly_canonical(pp)) {
+      throw Error(
+          fmt::format("{} was computed from {}, not from {}", rp.string(), r.config, pp.string()));
+    }
+    r.values = p.values;
+    r.base = p.base.string();
+    results.push_back(std::move(r));
+  }
+  // CSV.
+  std::string csv = "index,base";
+  for (const auto& a : spec.axes) csv += "," + a.key;
+  csv += ",max_error_lsb,mean_error_lsb,max_error_abs";
+  for (const auto& sc : spec.scenes) csv += fmt::format(",cc_{0},psnr_{0}", sc.scene);
+  csv += ",cells,transistors,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency\n";
+  for (const PointResult& r : results) {
+    csv += fmt::format("{},{}", r.index, fs::path(r.base).filename().string());
+    for (const auto& v : r.values) csv += fmt::format(",{}", unquote(v.second));
+    csv += fmt::format(",{:.6g},{:.6g},{:.6g}", r.error.max_lsb, r.error.mean_lsb, r.error.max_abs);
+    for (std::size_t i = 0; i < r.colour_correctness.size(); ++i) {
+      csv += fmt::format(",{:.6f},{:.3f}", r.colour_correctness[i].second, r.psnr[i].second);
+    }
+    if (r.synthesized) {
+      csv += fmt::format(",{},{},{},{},{},{},{},{:.2f}", r.synth.cells, r.synth.transistors,
+                         r.synth.lut4, r.synth.carry, r.synth.mac16, r.synth.ff,
+                         r.synth.fits ? 1 : 0, r.synth.fmax_mhz);
+    } else {
+      csv += ",,,,,,,,";
+    }
+    csv += fmt::format(",{}\n", r.latency);
+  }
+  write_text(out / "sweep.csv", csv);
+
+  // Pareto front: no other point has both less (or equal) area and less (or equal) error.
+  const auto dominated = [&](const PointResult& a) {
+    const double aa = area_of(spec, a);
+    if (std::isnan(aa)) return false;
+    return std::any_of(results.begin(), results.end(), [&](const PointResult& b) {
+      const double ab = area_of(spec, b);
+      return !std::isnan(ab) && ab <= aa && b.error.max_abs <= a.error.max_abs &&
+             (ab < aa || b.error.max_abs < a.error.max_abs);
+    });
+  };
+  std::string md =
+      fmt::format("# Sweep {}\n\n`{}`: {} points, error over {} samples (seed {})\n\n", spec.name,
+                  spec.file.string(), results.size(), spec.samples, spec.seed);
+  md += "| # | base |";
+  std::string rule = "|---|---|";
+  for (const auto& a : spec.axes) {
+    md += " " + a.key + " |";
+    rule += "---|";
+  }
+  md += " max err (LSB) | mean err (LSB) |";
+  rule += "---|---|";
+  for (const auto& sc : spec.scenes) {
+    md += fmt::format(" cc {} |", sc.scene);
+    rule += "---|";
+  }
+  const bool synth = spec.synth.generic || spec.synth.ice40;
+  if (spec.synth.generic) {
+    md += " cells | transistors |";
+    rule += "---|---|";
+  }
+  if (spec.synth.ice40) {
+    md += " LUT4 | carry | MAC16 | fmax (MHz) |";
+    rule += "---|---|---|---|";
+  }
+  md += " latency |";
+  rule += "---|";
+  if (synth) {
+    md += " Pareto |";
+    rule += "---|";
+  }
+  md += "\n" + rule + "\n";
+  for (const PointResult& r : results) {
+    md += fmt::format("| {} | {} |", r.index, fs::path(r.base).stem().string());
+    for (const auto& v : r.values) md += fmt::format(" {} |", unquote(v.second));
+    md += fmt::format(" {:.4g} | {:.4g} |", r.error.max_lsb, r.error.mean_lsb);
+    for (const auto& c : r.colour_correctness) md += fmt::format(" {:.4f} |", c.second);
+    if (spec.synth.generic) md += fmt::format(" {} | {} |", r.synth.cells, r.synth.transistors);
+    if (spec.synth.ice40) {
+      md += fmt::format(" {} | {} | {} | {} |", r.synth.lut4, r.synth.carry, r.synth.mac16,
+                        r.synth.fits ? fmt::format("{:.1f}", r.synth.fmax_mhz) : "does not fit");
+    }
+    md += fmt::format(" {} |", r.latency);
+    if (synth) md += dominated(r) ? " |" : " yes |";
+    md += "\n";
+  }
+  write_text(out / "summary.md", md);
+
+  if (synth) {
+    std::map<std::string, XySeries> series;
+    for (const PointResult& r : results) {
+      std::string variant = "all";
+      if (spec.variant == "base") {
+        variant = fs::path(r.base).stem().string();
+      } else if (!spec.variant.empty()) {
+        for (const auto& v : r.values) {
+          if (v.first == spec.variant) variant = spec.variant + "=" + unquote(v.second);
+        }
+      }
+      auto& s = series[variant];
+      s.label = variant;
+      s.lines = false;
+      s.points.emplace_back(area_of(spec, r), r.error.max_abs);
+    }
+    std::vector<XySeries> list;
+    for (auto& [k, s] : series) {
+      std::sort(s.points.begin(), s.points.end());
+      list.push_back(s);
+    }
+    XyAxes axes;
+    axes.x_label = spec.area;
+    axes.y_label = "max |error| (absolute)";
+    axes.log_y = true;
+    write_png(plot_xy(list, axes, fmt::format("{}: error against area", spec.name)),
+              out / "pareto.png");
+  }
+  return results;
+}
+
+std::vector<PointResult> run_sweep(const SweepSpec& spec, const fs::path& out,
+                                   const std::function<void(std::size_t, std::size_t)>& progress,
+                                   std::FILE* log) {
+  const std::vector<SweepPoint> points = plan_sweep(spec, out);
+  for (const SweepPoint& p : points) {
+    progress(p.index, points.size());
+    PointResult r = evaluate_point(spec, point_path(out, p.index), p.index, log);
+    write_point_result(r, result_path(out, p.index));
+  }
+  progress(points.size(), points.size());
+  return merge_sweep(spec, out);
+}
+
+// ---- Minimum-width search ----
+
+SearchSpec load_search(const fs::path& file) {
+  SearchSpec s;
+  s.file = file;
+  s.name = file.stem().string();
+  const toml::table t = parse_file(file);
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str());
+    if (key == "name" && v.is_string()) {
+      s.name = *v.value<std::string>();
+    } else if (key == "base" && v.is_string()) {
+      s.base = resolve(file, *v.value<std::string>());
+    } else if (key == "signals" && v.is_array()) {
+      for (const auto& x : *v.as_array()) {
+        if (!x.is_string()) fail_at(file, x, "signals: expected [format] key names");
+        s.signals.push_back(*x.value<std::string>());
+      }
+    } else if (key == "min_frac" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
+      s.min_frac = static_cast<int>(*v.value<std::int64_t>());
+    } else if (key == "max_lsb" && (v.is_floating_point() || v.is_integer()) &&
+               *v.value<double>() > 0) {
+      s.max_lsb = *v.value<double>();
+    } else if (key == "min_colour_correctness" && (v.is_floating_point() || v.is_integer()) &&
+               *v.value<double>() > 0 && *v.value<double>() <= 1) {
+      s.min_colour_correctness = *v.value<double>();
+    } else if (key == "scene" && v.is_string()) {
+      s.scene = *v.value<std::string>();
+    } else if (key == "method" && v.is_string()) {
+      s.method = *v.value<std::string>();
+    } else if (key == "scene_size" && v.is_integer() && *v.value<std::int64_t>() >= 1 &&
+               *v.value<std::int64_t>() <= 2048) {
+      s.scene_size = static_cast<int>(*v.value<std::int64_t>());
+    } else if (key == "samples" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
+      s.samples = static_cast<std::uint64_t>(*v.value<std::int64_t>());
+    } else if (key == "seed" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
+      s.seed = static_cast<std::uint64_t>(*v.value<std::int64_t>());
+    } else if (key == "verify_vectors" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
+      s.verify_vectors = static_cast<std::uint64_t>(*v.value<std::int64_t>());
+    } else {
+      fail_at(file, v,
+              fmt::format("unexpected '{}' (expected name, base, signals, min_frac, "
+                          "max_lsb > 0, min_colour_correctness in (0, 1], scene, method, "
+                          "scene_size, samples, seed, verify_vectors)",
+                          key));
+    }
+  }
+  if (s.base.empty()) throw Error(fmt::format("{}: no base configuration", file.string()));
+  if (std::isinf(s.max_lsb) && s.min_colour_correctness == 0) {
+    throw Error(fmt::format("{}: no budget (max_lsb or min_colour_correctness)", file.string()));
+  }
+  if (s.min_colour_correctness > 0) {
+    if (s.scene.empty() || s.method.empty()) {
+      throw Error(fmt::format("{}: min_colour_correctness needs scene and method", file.string()));
+    }
+    const MethodInfo& m = find_method(s.method);
+    const std::string pipeline = Config::load(s.base).pipeline();
+    if (fs::path(std::string(m.config)).parent_path() != pipeline) {
+      throw Error(fmt::format("{}: method '{}' does not run on a {} unit", file.string(), s.method,
+                              pipeline));
+    }
+  }
+  if (s.signals.empty()) throw Error(fmt::format("{}: no signals to narrow", file.string()));
+  const toml::table base = parse_file(s.base);
+  for (const auto& sig : s.signals) {
+    if (!base["format"][sig].is_string()) {
+      throw Error(fmt::format("{}: signal '{}' is not a [format] key of {}", file.string(), sig,
+                              s.base.string()));
+    }
+  }
+  return s;
+}
+
+SearchResult search_min_width(const SearchSpec& spec,
+                              const std::function<void(std::string_view)>& note) {
+  const toml::table base = parse_file(spec.base);
+  std::map<std::string, fx::Format> formats;
+  for (const auto& sig : spec.signals)
+    formats[sig] = fx::Format::parse(*base["format"][sig].value<std::string>());
+  SearchResult result;
+  const auto candidate = [&](const std::map<std::string, fx::Format>& f) {
+    std::vector<std::pair<std::string, std::string>> values;
+    for (const auto& sig : spec.signals)
+      values.emplace_back("format." + sig, fmt::format("\"{}\"", f.at(sig).str()));
+    return values;
+  };
+  // Candidates are files (the renderer loads them): in a directory of their own.
+  const fs::path dir =
+      fs::temp_directory_path() / fmt::format("phongsim-search-{}-{}", spec.name, getpid());
+  fs::create_directories(dir);
+  const std::shared_ptr<void> cleanup(nullptr, [dir](void*) {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  });
+  struct Evaluation {
+    ModelError error;
+    double cc = NAN;
+    [[nodiscard]] std::string str() const {
+      return std::isnan(cc) ? fmt::format("max error {:.4g} LSB", error.max_lsb)
+                            : fmt::format("max error {:.4g} LSB, colour correctness {:.5f}",
+                                          error.max_lsb, cc);
+    }
+  };
+  // Evaluates a candidate, or nothing when the pipeline refuses it.
+  const auto try_formats =
+      [&](const std::map<std::string, fx::Format>& f) -> std::optional<Evaluation> {
+    ++result.evaluations;
+    try {
+      const fs::path file = dir / (spec.name + ".toml");
+      write_text(file, point_toml(spec.base, candidate(f), "", ""));
+      const Config cfg = Config::load(file);
+      Evaluation e{model_error(cfg, spec.samples, spec.seed)};
+      if (spec.min_colour_correctness > 0) {
+        e.cc = scene_metrics(spec.scene, spec.method, spec.scene_size, file).colour_correctness;
+      }
+      return e;
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+  };
+  const auto within = [&](const Evaluation& e) {
+    return e.error.max_lsb <= spec.max_lsb &&
+           (std::isnan(e.cc) || e.cc >= spec.min_colour_correctness);
+  };
+  const auto first = try_formats(formats);
+  if (!first)
+    throw Error(fmt::format("{}: the base configuration does not evaluate", spec.file.string()));
+  if (!within(*first)) {
+    throw Error(fmt::format("{}: the base already misses the budget ({})", spec.file.string(),
+                            first->str()));
+  }
+  result.error = first->error;
+  result.colour_correctness = first->cc;
+  note(fmt::format("base: {}", first->str()));
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& sig : spec.signals) {
+      while (formats[sig].frac_bits > spec.min_frac) {
+        auto next = formats;
+        next[sig].frac_bits -= 1;
+        const auto e = try_formats(next);
+        if (!e || !within(*e)) break;
+        formats = next;
+        result.error = e->error;
+        result.colour_correctness = e->cc;
+        ++result.bits_saved;
+        changed = true;
+        note(fmt::format("{} -> {}: {}", sig, formats[sig].str(), e->str()));
+      }
+    }
+  }
+  for (const auto& sig : spec.signals) result.formats.emplace_back(sig, formats[sig].str());
+  std::string values;
+  for (const auto& [k, v] : result.formats)
+    values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", k, v);
+  result.toml = point_toml(
+      spec.base, candidate(formats),
+      fmt::format("# Found by `phongsim sweep search {}`: the narrowest fraction "
+                  "bits of {} within the budget ({} samples, seed {}).\n"
+                  "# Base {}; {}; max error {:.4g} LSB{}.\n",
+                  spec.file.filename().string(), fmt::join(spec.signals, ", "), spec.samples,
+                  spec.seed, spec.base.filename().string(), values, result.error.max_lsb,
+                  std::isnan(result.colour_correctness)
+                      ? ""
+                      : fmt::format(", colour correctness {:.5f} on {} ({})",
+                                    result.colour_correctness, spec.scene, spec.method)),
+      fmt::format("found by search {}: max error {:.4g} LSB", spec.name, result.error.max_lsb));
+  return result;
+}
+
+}  // namespace phongsim

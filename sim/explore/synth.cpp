@@ -1,0 +1,516 @@
+#include "sim/explore/synth.h"
+
+#include <fmt/format.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include "base/error.h"
+#include "base/file_util.h"
+#include "base/paths.h"
+#include "base/process.h"
+#include "sim/cosim/rtl_library.h"
+
+namespace phongsim {
+namespace fs = std::filesystem;
+namespace {
+
+// Paths and tools fixed when phongsim was configured (CMakeLists.txt).
+const fs::path& kSourceDir = data_root();
+const char* const kCmake = cmake_program();
+
+// Part of every cache key: bump when the flow changes in a way the hashed scripts do not show
+// (the wrapper, what is counted, how results are parsed).
+constexpr const char* kFlowVersion = "phongsim synth flow 1";
+constexpr const char* kWrapTop = "phongsim_synth_wrap";
+
+std::string trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!trim(line).empty()) lines.push_back(trim(line));
+  }
+  return lines;
+}
+
+// What a failing tool said: its last ERROR line (yosys lists a failed selection after it), else
+// its last line.
+std::string last_error_line(const std::string& log) {
+  const auto lines = lines_of(log);
+  for (auto it = lines.rbegin(); it != lines.rend(); ++it) {
+    if (it->find("ERROR") != std::string::npos) return *it;
+  }
+  return lines.empty() ? std::string("no output") : lines.back();
+}
+
+// A temporary directory removed with everything in it when the synthesis is over.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "phongsim-synth-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      throw Error(fmt::format("cannot create a temporary directory {}", pattern));
+    }
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// A path as a yosys file argument of read_verilog (quoted) or of tee -o (plain: no spaces).
+std::string quoted(const fs::path& path) {
+  const std::string s = path.string();
+  if (s.find_first_of("\"\n;") != std::string::npos) {
+    throw Error(fmt::format("synthesis cannot pass the path '{}' to yosys (quote or ;)", s));
+  }
+  return fmt::format("\"{}\"", s);
+}
+std::string plain(const fs::path& path) {
+  const std::string s = path.string();
+  if (s.find_first_of("\" \t\n;") != std::string::npos) {
+    throw Error(fmt::format("synthesis cannot use the directory '{}' (space, quote or ;)", s));
+  }
+  return s;
+}
+
+// The tool's version line; Error naming the tool and its Debian package when it cannot run.
+std::string tool_version(const std::vector<std::string>& argv, const char* package) {
+  const auto r = run_process(argv);
+  if (r.exit_code != 0) {
+    throw Error(
+        fmt::format("synthesis needs {}, which cannot be run: install the Debian package {} "
+                    "(scripts/setup.sh installs it)",
+                    argv[0], package));
+  }
+  const auto lines = lines_of(r.out);
+  return lines.empty() ? std::string() : lines.back();
+}
+
+struct RtlSources {
+  std::string top;
+  std::vector<fs::path> files;  // absolute, in reading order
+};
+
+// The pipeline's top and sources as cmake/PhongsimRtl.cmake lists them (as synth_stats.sh asks).
+RtlSources rtl_sources(const std::string& pipeline, const fs::path& tmp) {
+  const fs::path script = tmp / "sources.cmake";
+  std::ofstream(script) << "include(\"${PHONGSIM_SOURCE_DIR}/cmake/PhongsimRtl.cmake\")\n"
+                           "phongsim_rtl_sources(${PIPELINE} files)\n"
+                           "message(\"top=${PHONGSIM_RTL_${PIPELINE}_TOP}\")\n"
+                           "foreach(f IN LISTS files)\n"
+                           "  message(\"src=${f}\")\n"
+                           "endforeach()\n";
+  const auto r = run_process({kCmake, "-DPHONGSIM_SOURCE_DIR=" + kSourceDir.string(),
+                              "-DPIPELINE=" + pipeline, "-P", script.string()});
+  RtlSources s;
+  for (const auto& line : lines_of(r.out)) {
+    if (line.starts_with("top=")) s.top = line.substr(4);
+    if (line.starts_with("src=")) s.files.emplace_back(line.substr(4));
+  }
+  if (r.exit_code != 0 || s.top.empty() || s.files.empty()) {
+    throw Error(fmt::format("cannot list the RTL sources of pipeline '{}': {}", pipeline,
+                            last_error_line(r.out)));
+  }
+  return s;
+}
+
+// "-GPFmt=65802 -GK=2" -> "-set PFmt 65802 -set K 2" (the rule of scripts/synth_stats.sh).
+std::string chparams(const std::string& gflags) {
+  static const std::regex flag("^-G([A-Za-z0-9_]+)=(-?[0-9]+)$");
+  std::istringstream in(gflags);
+  std::string word;
+  std::string out;
+  while (in >> word) {
+    std::smatch m;
+    if (!std::regex_match(word, m, flag)) {
+      throw Error(fmt::format("synthesis cannot translate the RTL parameter '{}'", word));
+    }
+    out += fmt::format("{}-set {} {}", out.empty() ? "" : " ", m[1].str(), m[2].str());
+  }
+  return out;
+}
+
+// The start of every yosys script: read the sources (plus `extra`), set the parameters.
+std::string read_script(const RtlSources& src, const std::string& chparam,
+                        const std::string& extra) {
+  std::string s = "read_verilog -sv";
+  for (const auto& f : src.files) s += fmt::format(" {}", quoted(f));
+  if (!extra.empty()) s += fmt::format(" {}", extra);
+  s += "; ";
+  if (!chparam.empty()) s += fmt::format("chparam {} {}; ", chparam, src.top);
+  return s;
+}
+
+std::string generic_script(const std::string& top, const std::string& dir) {
+  return fmt::format(
+      "synth -flatten -top {0}; check -assert; select -assert-none t:$*dlatch* t:$_DLATCH*; "
+      "tee -q -o {1}/generic.json stat -json; dffunmap; "
+      "tee -q -o {1}/cmos.json stat -json -tech cmos",
+      top, dir);
+}
+
+std::string ports_script(const std::string& top, const std::string& dir) {
+  return fmt::format("hierarchy -top {0}; tee -q -o {1}/ports.txt portlist {0}", top, dir);
+}
+
+// The top is flattened on its own and kept as one module under the wrapper, so its cells can be
+// counted apart from the wrapper's.
+std::string ice40_script(const std::string& top, const std::string& dir) {
+  return fmt::format(
+      "hierarchy -top {2}; proc; flatten {0}; select -assert-none t:$*dlatch*; "
+      "synth_ice40 -dsp -noflatten -top {2} -json {1}/ice40.json; "
+      "tee -q -o {1}/ice40-stat.json stat -json",
+      top, dir, kWrapTop);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void log_line(std::FILE* log, const std::string& text, std::chrono::steady_clock::time_point t0) {
+  if (log == nullptr) return;
+  fmt::print(log, "phongsim: synth: {} ({:.1f} s)\n", text, seconds_since(t0));
+  std::fflush(log);
+}
+
+void run_yosys(const std::string& script, const fs::path& log_path, const Config& cfg,
+               const std::string& top) {
+  const auto r = run_process({"yosys", "-q", "-p", script}, log_path);
+  if (r.exit_code == 0) return;
+  const std::string line = last_error_line(read_file(log_path));
+  if (line.find("Assertion failed") != std::string::npos &&
+      (line.find("dlatch") != std::string::npos || line.find("DLATCH") != std::string::npos)) {
+    throw Error(fmt::format("{}: the RTL of {} has latches (yosys: {})", cfg.origin(), top, line));
+  }
+  throw Error(fmt::format("{}: yosys synthesis of {} failed (exit {}): {}", cfg.origin(), top,
+                          r.exit_code, line));
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  try {
+    return nlohmann::json::parse(read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("cannot read yosys statistics {}: {}", path.string(), e.what()));
+  }
+}
+
+// stat -json: {"modules": {"\\name": {"num_cells": n, "num_cells_by_type": {...}}}, "design": ..}
+const nlohmann::json& stat_module(const nlohmann::json& stat, const std::string& top) {
+  const auto& modules = stat.at("modules");
+  const auto it = modules.find("\\" + top);
+  if (it == modules.end()) throw Error(fmt::format("yosys statistics have no module {}", top));
+  return *it;
+}
+
+void run_generic(const RtlSources& src, const std::string& chparam, const fs::path& dir,
+                 const Config& cfg, SynthResult& r, std::FILE* log) {
+  const auto t0 = std::chrono::steady_clock::now();
+  run_yosys(read_script(src, chparam, "") + generic_script(src.top, plain(dir)),
+            dir / "yosys-generic.log", cfg, src.top);
+  try {
+    const auto generic = read_json(dir / "generic.json");
+    r.cells = stat_module(generic, src.top).at("num_cells").get<std::int64_t>();
+    // "285336+": the '+' says some cells (asynchronous-reset flip-flops) have no cost.
+    const auto cmos = read_json(dir / "cmos.json");
+    const auto& est = cmos.at("design").at("estimated_num_transistors");
+    r.transistors = est.is_string() ? std::stoll(est.get<std::string>()) : est.get<std::int64_t>();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {  // JSON shape, number syntax
+    throw Error(fmt::format("unexpected yosys statistics for {}: {}", cfg.origin(), e.what()));
+  }
+  log_line(log,
+           fmt::format("yosys generic synthesis of {} ({}): {} cells, ~{} transistors",
+                       cfg.origin(), src.top, r.cells, r.transistors),
+           t0);
+}
+
+struct Port {
+  std::string direction;
+  std::string name;
+  int width = 0;
+};
+
+std::vector<Port> read_ports(const fs::path& path, const std::string& top) {
+  // portlist: "module lyon_top", then "input [35:0] in_n0_i" per port.
+  static const std::regex port(R"(^(input|output|inout) \[(-?\d+):(-?\d+)\] (\S+)$)");
+  std::vector<Port> ports;
+  for (const auto& line : lines_of(read_file(path))) {
+    std::smatch m;
+    if (!std::regex_match(line, m, port)) continue;
+    const int msb = std::stoi(m[2].str());
+    const int lsb = std::stoi(m[3].str());
+    ports.push_back({m[1].str(), m[4].str(), std::abs(msb - lsb) + 1});
+  }
+  if (ports.empty()) throw Error(fmt::format("yosys listed no ports of {}", top));
+  return ports;
+}
+
+// The wrapper that puts any top on a few pins: every input but clk_i and rst_ni comes from a
+// shift register fed by sin_i; every output is loaded (load_i) into a shift register read at
+// sout_o. Only register-to-register paths through the top remain, which nextpnr times.
+std::string wrapper(const std::string& top, const std::vector<Port>& ports) {
+  int in_bits = 0;
+  int out_bits = 0;
+  bool has_clk = false;
+  bool has_rst = false;
+  std::string conns;
+  for (const auto& p : ports) {
+    std::string net;
+    if (p.direction == "inout") throw Error(fmt::format("{}: inout port {}", top, p.name));
+    if (p.name == "clk_i" && p.direction == "input") {
+      has_clk = true;
+      net = "clk_i";
+    } else if (p.name == "rst_ni" && p.direction == "input") {
+      has_rst = true;
+      net = "rst_ni";
+    } else if (p.direction == "input") {
+      net = fmt::format("in_sr[{}:{}]", in_bits + p.width - 1, in_bits);
+      in_bits += p.width;
+    } else {
+      net = fmt::format("outs[{}:{}]", out_bits + p.width - 1, out_bits);
+      out_bits += p.width;
+    }
+    conns += fmt::format("{}    .{}({})", conns.empty() ? "" : ",\n", p.name, net);
+  }
+  if (!has_clk) throw Error(fmt::format("{} has no clk_i input to time", top));
+  const int ni = std::max(1, in_bits);
+  const int no = std::max(1, out_bits);
+  std::string v =
+      fmt::format("module {}(input clk_i,{} input sin_i, input load_i, output sout_o);\n", kWrapTop,
+                  has_rst ? " input rst_ni," : "");
+  v += fmt::format("  reg [{}:0] in_sr;\n  reg [{}:0] out_sr;\n  wire [{}:0] outs;\n", ni - 1,
+                   no - 1, no - 1);
+  v += ni == 1
+           ? "  always @(posedge clk_i) in_sr <= sin_i;\n"
+           : fmt::format("  always @(posedge clk_i) in_sr <= {{in_sr[{}:0], sin_i}};\n", ni - 2);
+  v += "  always @(posedge clk_i) out_sr <= load_i ? outs : (out_sr << 1);\n";
+  v += fmt::format("  assign sout_o = out_sr[{}];\n", no - 1);
+  v += fmt::format("  {} core (\n{});\nendmodule\n", top, conns);
+  return v;
+}
+
+// nextpnr's "Device utilisation" lines: "Info:   ICESTORM_LC:  608/ 5280  11%". Returns the
+// over-used resources ("ICESTORM_DSP 26/8").
+std::vector<std::string> overused(const std::string& log) {
+  static const std::regex util(R"(^Info:\s+([A-Za-z0-9_]+):\s+(\d+)/\s*(\d+)\s+\d+%)");
+  std::vector<std::string> over;
+  for (const auto& line : lines_of(log)) {
+    std::smatch m;
+    if (std::regex_search(line, m, util) && std::stoll(m[2].str()) > std::stoll(m[3].str())) {
+      over.push_back(fmt::format("{} {}/{}", m[1].str(), m[2].str(), m[3].str()));
+    }
+  }
+  return over;
+}
+
+void run_ice40(const RtlSources& src, const std::string& chparam, const fs::path& dir,
+               const Config& cfg, SynthResult& r, std::FILE* log) {
+  auto t0 = std::chrono::steady_clock::now();
+  run_yosys(read_script(src, chparam, "") + ports_script(src.top, plain(dir)),
+            dir / "yosys-ports.log", cfg, src.top);
+  const fs::path wrap = dir / "wrap.v";
+  std::ofstream(wrap) << wrapper(src.top, read_ports(dir / "ports.txt", src.top));
+  run_yosys(read_script(src, chparam, quoted(wrap)) + ice40_script(src.top, plain(dir)),
+            dir / "yosys-ice40.log", cfg, src.top);
+  try {
+    const auto stat = read_json(dir / "ice40-stat.json");
+    const auto& top = stat_module(stat, src.top);
+    r.lut4 = r.carry = r.mac16 = r.ff = 0;
+    for (const auto& [type, n] : top.at("num_cells_by_type").items()) {
+      const auto count = n.get<std::int64_t>();
+      if (type == "SB_LUT4") r.lut4 += count;
+      if (type == "SB_CARRY") r.carry += count;
+      if (type == "SB_MAC16") r.mac16 += count;
+      if (type.starts_with("SB_DFF")) r.ff += count;
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("unexpected yosys statistics for {}: {}", cfg.origin(), e.what()));
+  }
+  log_line(log,
+           fmt::format("yosys synth_ice40 of {} ({}): {} LUT4, {} carries, {} SB_MAC16, {} FFs",
+                       cfg.origin(), src.top, r.lut4, r.carry, r.mac16, r.ff),
+           t0);
+
+  t0 = std::chrono::steady_clock::now();
+  const fs::path pnr_log = dir / "nextpnr.log";
+  const fs::path report = dir / "report.json";
+  const auto p = run_process(
+      {"nextpnr-ice40", std::string("--") + kSynthIce40Device, "--package", kSynthIce40Package,
+       "--json", (dir / "ice40.json").string(), "--report", report.string(), "--freq",
+       std::to_string(kSynthIce40TargetMhz), "--seed", std::to_string(kSynthIce40Seed),
+       "--timing-allow-fail", "-q", "-l", pnr_log.string()});
+  const std::string pnr_text = read_file(pnr_log);
+  if (p.exit_code != 0) {
+    const auto over = overused(pnr_text);
+    const std::string line = last_error_line(pnr_text.empty() ? p.out : pnr_text);
+    if (over.empty() && line.find("no BELs remaining") == std::string::npos) {
+      throw Error(fmt::format("{}: nextpnr-ice40 failed on {} (exit {}): {}", cfg.origin(), src.top,
+                              p.exit_code, line));
+    }
+    r.fits = false;
+    r.fmax_mhz = 0;
+    std::string why;
+    for (const auto& o : over) why += (why.empty() ? "" : ", ") + o;
+    log_line(log,
+             fmt::format("nextpnr-ice40 --{} of {}: does not fit ({})", kSynthIce40Device,
+                         cfg.origin(), why.empty() ? line : why),
+             t0);
+    return;
+  }
+  double fmax = std::numeric_limits<double>::infinity();
+  try {
+    const auto j = read_json(report);
+    for (const auto& [clock, f] : j.at("fmax").items()) {
+      fmax = std::min(fmax, f.at("achieved").get<double>());
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("unexpected nextpnr report for {}: {}", cfg.origin(), e.what()));
+  }
+  if (!std::isfinite(fmax)) throw Error(fmt::format("nextpnr timed no clock of {}", src.top));
+  r.fits = true;
+  r.fmax_mhz = fmax;
+  log_line(log,
+           fmt::format("nextpnr-ice40 --{} of {}: fmax {:.2f} MHz", kSynthIce40Device, cfg.origin(),
+                       fmax),
+           t0);
+}
+
+nlohmann::json to_json(const SynthResult& r) {
+  return {{"key", r.key},   {"cells", r.cells}, {"transistors", r.transistors},
+          {"lut4", r.lut4}, {"carry", r.carry}, {"mac16", r.mac16},
+          {"ff", r.ff},     {"fits", r.fits},   {"fmax_mhz", r.fmax_mhz}};
+}
+
+std::optional<SynthResult> read_cached(const fs::path& path, const std::string& key) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return std::nullopt;
+  try {
+    const auto j = nlohmann::json::parse(read_file(path));
+    if (j.at("key").get<std::string>() != key) return std::nullopt;
+    SynthResult r;
+    r.key = key;
+    r.cells = j.at("cells").get<std::int64_t>();
+    r.transistors = j.at("transistors").get<std::int64_t>();
+    r.lut4 = j.at("lut4").get<std::int64_t>();
+    r.carry = j.at("carry").get<std::int64_t>();
+    r.mac16 = j.at("mac16").get<std::int64_t>();
+    r.ff = j.at("ff").get<std::int64_t>();
+    r.fits = j.at("fits").get<bool>();
+    r.fmax_mhz = j.at("fmax_mhz").get<double>();
+    r.cached = true;
+    return r;
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;  // unreadable (e.g. from another version): synthesize again
+  }
+}
+
+// Temp file in the cache directory, then rename: readers see the whole file or none. A cache that
+// cannot be written costs the next caller a synthesis, not this one its result: `log` is told.
+void write_cached(const fs::path& path, const nlohmann::json& j, std::FILE* log) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path tmp = path.string() + fmt::format(".tmp.{}.{}", getpid(), counter.fetch_add(1));
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  bool written = false;
+  if (!ec) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << j.dump(2) << "\n";
+    written = static_cast<bool>(out.flush());
+  }
+  if (written) fs::rename(tmp, path, ec);
+  if (!written || ec) {
+    fs::remove(tmp, ec);
+    if (log != nullptr) {
+      fmt::print(log, "phongsim: synth: warning: cannot write the synthesis cache {}\n",
+                 path.string());
+    }
+  }
+}
+
+}  // namespace
+
+SynthResult synthesize(const Config& cfg, const SynthOptions& options, std::FILE* log) {
+  const std::string gflags = rtl_gflags(cfg);
+  const std::string chparam = chparams(gflags);
+  const std::string yosys_version = tool_version({"yosys", "-V"}, "yosys");
+  const std::string nextpnr_version =
+      options.ice40 ? tool_version({"nextpnr-ice40", "--version"}, "nextpnr-ice40") : "";
+
+  TempDir tmp;
+  const RtlSources src = rtl_sources(cfg.pipeline(), tmp.path());
+
+  ContentHash h;
+  h.add(kFlowVersion);
+  h.add(cfg.pipeline());
+  h.add(src.top);
+  h.add(gflags);
+  h.add(fmt::format("generic={} ice40={}", options.generic, options.ice40));
+  h.add(yosys_version);
+  h.add(read_script(RtlSources{"TOP", {"SRC"}}, "CHPARAM", "EXTRA"));
+  if (options.generic) h.add(generic_script("TOP", "DIR"));
+  if (options.ice40) {
+    h.add(nextpnr_version);
+    h.add(fmt::format("{} {} {} {}", kSynthIce40Device, kSynthIce40Package, kSynthIce40TargetMhz,
+                      kSynthIce40Seed));
+    h.add(ports_script("TOP", "DIR"));
+    h.add(ice40_script("TOP", "DIR"));
+  }
+  for (const auto& f : src.files) {
+    h.add(f.lexically_relative(kSourceDir).string());
+    h.add(read_file(f));
+  }
+  const std::string key = h.hex();
+  const fs::path cache_file = rtl_cache_dir() / "synth" / (key + ".json");
+  if (auto cached = read_cached(cache_file, key)) return *cached;
+
+  SynthResult r;
+  r.key = key;
+  if (!options.generic && !options.ice40) return r;
+  if (options.generic) run_generic(src, chparam, tmp.path(), cfg, r, log);
+  if (options.ice40) run_ice40(src, chparam, tmp.path(), cfg, r, log);
+
+  auto j = to_json(r);
+  j["pipeline"] = cfg.pipeline();
+  j["config"] = cfg.origin();
+  j["top"] = src.top;
+  j["gflags"] = gflags;
+  j["generic"] = options.generic;
+  j["ice40"] = options.ice40;
+  if (options.ice40) j["device"] = kSynthIce40Device;
+  j["yosys"] = yosys_version;
+  if (options.ice40) j["nextpnr"] = nextpnr_version;
+  write_cached(cache_file, j, log);
+  return r;
+}
+
+}  // namespace phongsim

@@ -1,0 +1,181 @@
+// Stimulus for the Kuijk–Blake engine. Its input is a stream of span programs (a header word
+// then its event words), so random vectors come in chunks of kChunkWords words: each chunk is
+// one span program followed by one-pixel filler spans, derived from (seed, chunk), so vector i
+// is still a pure function of (seed, i). Half the chunks are programs the setup writes for
+// random angular spans (the configuration's policy), half are random well-formed programs
+// (events before the last pixel, increasing indices) with arbitrary values. Directed vectors
+// cover what well-formed programs never do: late events, events at or after the last pixel,
+// left-over event words, accumulator wrap-around and every clamp corner.
+#include "sim/pipelines/kb_stimulus.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "base/error.h"
+#include "model/kb.h"
+#include "model/kb_setup.h"
+
+namespace phongsim {
+namespace {
+
+using Word = std::vector<std::int64_t>;  // n, count, f, d1, d2, reload
+
+Word header(std::int64_t last, std::int64_t count, std::int64_t f, std::int64_t d1,
+            std::int64_t d2) {
+  return {last, count, f, d1, d2, 0};
+}
+Word event(std::int64_t at, std::int64_t d1, std::int64_t d2, bool reload) {
+  return {at, 0, 0, d1, d2, reload ? 1 : 0};
+}
+
+// A random well-formed program: length log-uniform in 1..4096, up to the configured number of
+// events at distinct increasing indices before the last pixel, values of plausible magnitude
+// (f around [0, 1], d1 ~ 1/length, d2 ~ 1/length²) or, one time in four, arbitrary bits.
+std::vector<Word> random_program(Rng& rng, const KbFormats& f, std::uint64_t max_events) {
+  const auto length = static_cast<std::int64_t>(
+      std::min(4096.0, std::floor(std::exp(rng.uniform() * std::log(4097.0)))));
+  const std::int64_t last = std::max<std::int64_t>(length, 1) - 1;
+  const auto q = [&f](double x) {
+    return fx::quantize(x, f.acc, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  const auto bits = [&f, &rng]() {
+    return f.acc.min_raw() +
+           static_cast<std::int64_t>(
+               rng.below(static_cast<std::uint64_t>(f.acc.max_raw() - f.acc.min_raw()) + 1));
+  };
+  const double scale = 1.0 / static_cast<double>(last + 1);
+  const auto value = [&](double magnitude) {
+    return rng.below(4) == 0 ? bits() : q((2 * rng.uniform() - 1) * magnitude);
+  };
+  const std::uint64_t events =
+      rng.below(std::min<std::uint64_t>(static_cast<std::uint64_t>(last), max_events) + 1);
+  // Distinct indices in [0, last - 1], increasing.
+  std::vector<std::int64_t> at;
+  while (at.size() < events) {
+    const auto i = static_cast<std::int64_t>(rng.below(static_cast<std::uint64_t>(last)));
+    if (std::find(at.begin(), at.end(), i) == at.end()) at.push_back(i);
+  }
+  std::sort(at.begin(), at.end());
+  std::vector<Word> words{header(last, static_cast<std::int64_t>(events),
+                                 rng.below(4) == 0 ? bits() : q(1.4 * rng.uniform() - 0.2),
+                                 value(scale), value(scale * scale))};
+  for (const std::int64_t i : at) {
+    words.push_back(event(i, value(scale), value(scale * scale), rng.below(2) == 0));
+  }
+  return words;
+}
+
+}  // namespace
+
+KbSpan kb_random_span(Rng& rng, const KbSetupOptions& setup, int length) {
+  KbSpan span;
+  span.length =
+      static_cast<int>(std::min(4096.0, std::floor(std::exp(rng.uniform() * std::log(4097.0)))));
+  span.length = length > 0 ? length : std::max(span.length, 1);
+  const auto terms = static_cast<int>(rng.below(static_cast<std::uint64_t>(setup.max_terms))) + 1;
+  double budget = 1.0;
+  for (int t = 0; t < terms; ++t) {
+    KbTerm term;
+    term.ab = kb_params(static_cast<double>(rng.below(125) + 1), setup.ab);
+    const double start = (3 * rng.uniform() - 1.5) * term.ab.b;
+    const double end = (3 * rng.uniform() - 1.5) * term.ab.b;
+    term.theta0 = start;
+    term.dtheta = (end - start) / span.length;
+    term.scale = budget * (t + 1 == terms ? 1.0 : rng.uniform());
+    budget -= term.scale;
+    span.terms.push_back(term);
+  }
+  return span;
+}
+
+std::vector<std::vector<std::int64_t>> kb_random_program(Rng& rng, const KbFormats& formats,
+                                                         const KbSetupOptions& setup) {
+  KbSpan span = kb_random_span(rng, setup);
+  while (true) {
+    try {
+      return kb_program(span, setup.policy, formats);
+    } catch (const Error&) {
+      // Too many events for the header: fewer terms first, then a narrower sweep (fewer
+      // crossings; a sweep that stays in one section needs none).
+      if (span.terms.size() > 1) {
+        span.terms.resize(1);
+        span.terms[0].scale = 1;
+      } else {
+        span.terms[0].dtheta /= 2;
+      }
+    }
+  }
+}
+
+Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setup) {
+  const KbFormats& f = dynamic_cast<const KbModel&>(model).formats();
+  const std::uint64_t max_events = (std::uint64_t{1} << f.event_bits) - 1;
+  const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
+  const std::int64_t lsb = 1;
+
+  // Directed: clamp corners and wrap-around (one-pixel spans), then malformed programs.
+  std::vector<Word> d;
+  for (const std::int64_t v : {std::int64_t{0}, one, one - lsb, one + lsb, -lsb, f.acc.min_raw(),
+                               f.acc.max_raw(), one / 2, one / 2 + lsb}) {
+    d.push_back(header(0, 0, v, 0, 0));
+  }
+  d.push_back(header(3, 0, f.acc.max_raw(), f.acc.max_raw(), f.acc.max_raw()));  // wraps
+  d.push_back(header(4095, 0, 0, 1, 0));                                         // 4096 pixels
+  d.push_back(header(4095, 0, one, -(one >> 11), 0));
+  // Events at the first pixels, consecutive indices, with and without reload.
+  d.push_back(header(9, 3, one / 4, one / 16, 0));
+  d.push_back(event(0, one / 32, -(one >> 8), true));
+  d.push_back(event(1, 0, one >> 7, false));
+  d.push_back(event(2, -(one / 64), 0, true));
+  // A late event (index below the current pixel) is applied at once.
+  d.push_back(header(7, 2, one / 2, 0, 0));
+  d.push_back(event(5, one / 8, 0, true));
+  d.push_back(event(3, -(one / 8), 0, true));
+  // Events at and after the last pixel: the later ones are dropped after the span.
+  d.push_back(header(2, 3, one / 2, one / 16, 0));
+  d.push_back(event(2, one, one, true));
+  d.push_back(event(3, one, one, true));
+  d.push_back(event(4095, one, one, true));
+  // A one-pixel span with more event words than pixels, then back-to-back one-pixel spans.
+  d.push_back(header(0, 2, one, 0, 0));
+  d.push_back(event(0, 0, 0, false));
+  d.push_back(event(0, 0, 0, false));
+  for (int k = 0; k < 5; ++k) d.push_back(header(0, 0, k * one / 5, 0, 0));
+  // The largest event count the header can hold.
+  d.push_back(header(static_cast<std::int64_t>(max_events) + 3,
+                     static_cast<std::int64_t>(max_events), one / 2, 0, 0));
+  for (std::uint64_t e = 0; e < max_events; ++e) {
+    d.push_back(event(static_cast<std::int64_t>(e), one >> 6, -(one >> 10), e % 2 == 0));
+  }
+
+  // Random: chunk c of kChunkWords words, cached (consecutive indices share a chunk).
+  struct Cache {
+    std::uint64_t seed = 0;
+    std::uint64_t chunk = UINT64_MAX;
+    std::vector<Word> words;
+  };
+  auto cache = std::make_shared<Cache>();
+  const std::uint64_t directed = d.size();
+  // One program (at most 1 + max_events words) and at least one filler word per chunk.
+  const std::uint64_t chunk_words = max_events + 2;
+  auto random = [f, setup, max_events, directed, cache, chunk_words](
+                    std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) {
+    const std::uint64_t r = index - directed;
+    const std::uint64_t chunk = r / chunk_words;
+    if (cache->chunk != chunk || cache->seed != seed) {
+      Rng rng(seed, kStimulusStream, chunk);
+      cache->words =
+          rng.below(2) == 0 ? random_program(rng, f, max_events) : kb_random_program(rng, f, setup);
+      cache->words.resize(chunk_words, header(0, 0, 0, 0, 0));  // filler: one-pixel spans
+      cache->chunk = chunk;
+      cache->seed = seed;
+    }
+    const Word& w = cache->words[r % chunk_words];
+    std::copy(w.begin(), w.end(), in.begin());
+  };
+  return Stimulus(model, std::move(d), random);
+}
+
+}  // namespace phongsim

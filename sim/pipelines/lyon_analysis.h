@@ -1,0 +1,50 @@
+// `phongsim analyze lyon`: the numbers Lyon's report argues with, from the model and the float
+// references (ref/lyon_float.h). Each function returns data; report_lyon() formats it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/lyon.h"
+
+namespace phongsim {
+
+// Length of a vector of `length` after approximate normalization: float g1 and g2, and the
+// configured fixed-point unit (its norm order and formats; 0 if it does not normalize).
+struct LyonNormRow {
+  double length = 0;
+  double g1 = 0;
+  double g2 = 0;
+  double fixed = 0;
+};
+[[nodiscard]] std::vector<LyonNormRow> lyon_norm_table(const LyonModel& model);
+
+// max |f_k - cos^n alpha| over alpha, k = 0..3, for one shininess n.
+struct LyonShapeRow {
+  double n = 0;
+  std::array<double, 4> max_error{};
+};
+[[nodiscard]] std::vector<LyonShapeRow> lyon_shape_table();
+
+// The fixed-point unit against the same datapath in double precision (lyon::datapath), both fed
+// the same quantized inputs, on `samples` random_lyon_pixel()s from `seed`: errors in output LSBs.
+struct LyonOutputError {
+  std::uint64_t samples = 0;
+  double spec_max = 0;        // LSBs of the spec format
+  double spec_max_low_n = 0;  // the same over pixels with shininess n <= 256 (m <= 16)
+  double spec_mean = 0;
+  double diff_max = 0;  // LSBs of the diff format
+  double diff_mean = 0;
+  std::uint64_t spec_nonzero = 0;  // pixels with a visible highlight in the float reference
+};
+// exact_inputs: the reference sees the pixel before quantization instead, so the error also
+// counts the input formats (what width exploration needs).
+[[nodiscard]] LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples,
+                                                std::uint64_t seed, bool exact_inputs = false);
+
+// Every stage's format and width for the configuration (one pixel of zeros traces them).
+[[nodiscard]] std::string lyon_stage_formats(const LyonModel& model);
+
+}  // namespace phongsim

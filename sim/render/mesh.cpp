@@ -1,0 +1,1073 @@
+#include "sim/render/mesh.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "base/error.h"
+#include "base/paths.h"
+
+namespace phongsim {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr Vec3 kUp{0, 1, 0};  // the normal of last resort (never NaN)
+
+[[noreturn]] void fail_at(const fs::path& file, int line, const std::string& what) {
+  throw Error(fmt::format("{}:{}: {}", file.string(), line, what));
+}
+
+[[noreturn]] void fail_file(const fs::path& file, const std::string& what) {
+  throw Error(fmt::format("{}: {}", file.string(), what));
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_file(path, "cannot read file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+bool finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// normalized(v), or `fallback` when v has no usable direction (zero, tiny or not finite).
+Vec3 normalized_or(Vec3 v, Vec3 fallback) {
+  const double len = length(v);
+  if (!(len > 0) || !std::isfinite(len) || !std::isfinite(1.0 / len)) return fallback;
+  const Vec3 n = normalized(v);
+  return finite(n) ? n : fallback;
+}
+
+// Area-weighted vertex normals of `positions` under `tris` (kUp where no face contributes).
+std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
+                                        const std::vector<std::array<int, 3>>& tris) {
+  std::vector<Vec3> sum(positions.size());
+  for (const auto& t : tris) {
+    const Vec3 n = cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+    for (const int i : t) sum[i] = sum[i] + n;
+  }
+  for (Vec3& n : sum) n = normalized_or(n, kUp);
+  return sum;
+}
+
+// Line-oriented text: lines without their "\n" or "\r\n", numbered from 1.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  bool next(std::string_view& line) {
+    if (pos_ >= text_.size()) return false;
+    std::size_t end = text_.find('\n', pos_);
+    if (end == std::string_view::npos) end = text_.size();
+    line = text_.substr(pos_, end - pos_);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    pos_ = end + 1;
+    ++number_;
+    return true;
+  }
+  [[nodiscard]] int number() const { return number_; }
+  [[nodiscard]] std::size_t offset() const { return pos_; }  // start of the next line
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  int number_ = 0;
+};
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+std::vector<std::string_view> split_ws(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && is_space(s[i])) ++i;
+    const std::size_t start = i;
+    while (i < s.size() && !is_space(s[i])) ++i;
+    if (i > start) out.push_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+// from_chars refuses a leading '+', which some writers emit.
+std::string_view strip_plus(std::string_view tok) {
+  return tok.size() > 1 && tok[0] == '+' && tok[1] != '-' ? tok.substr(1) : tok;
+}
+
+std::optional<double> parse_double(std::string_view tok) {
+  tok = strip_plus(tok);
+  double v = 0;
+  const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+  if (ec != std::errc() || end != tok.data() + tok.size() || !std::isfinite(v)) {
+    return std::nullopt;
+  }
+  return v;
+}
+
+std::optional<long long> parse_integer(std::string_view tok) {
+  tok = strip_plus(tok);
+  long long v = 0;
+  const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+  if (ec != std::errc() || end != tok.data() + tok.size()) return std::nullopt;
+  return v;
+}
+
+// Appends polygon `corners` (indices into the output vertices) fan-triangulated from corner 0.
+void fan(const std::vector<int>& corners, std::vector<std::array<int, 3>>& out) {
+  for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+    out.push_back({corners[0], corners[k], corners[k + 1]});
+  }
+}
+
+// Drops vertices no triangle uses (keeping the order of the others).
+void remove_unreferenced(Mesh& m) {
+  std::vector<int> remap(m.positions.size(), -1);
+  for (const auto& t : m.triangles) {
+    for (const int i : t) remap[i] = 0;
+  }
+  Mesh out;
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    if (remap[i] < 0) continue;
+    remap[i] = static_cast<int>(out.positions.size());
+    out.positions.push_back(m.positions[i]);
+    out.normals.push_back(m.normals[i]);
+  }
+  out.triangles = m.triangles;
+  for (auto& t : out.triangles) {
+    for (int& i : t) i = remap[i];
+  }
+  m = std::move(out);
+}
+
+// ---- Bézier evaluation ----
+
+// Cubic Bernstein basis and its derivative at t, with s = 1 - t passed in (so that grid points
+// t = k/n, s = (n-k)/n are both correctly rounded and basis(t, s) mirrors basis(s, t) exactly).
+struct Basis {
+  std::array<double, 4> b;
+  std::array<double, 4> d;
+};
+
+Basis basis(double t, double s) {
+  Basis r;
+  r.b = {s * (s * s), 3 * t * (s * s), 3 * s * (t * t), t * (t * t)};
+  r.d = {-3 * (s * s), 3 * (s * s) - 6 * (s * t), 6 * (s * t) - 3 * (t * t), 3 * (t * t)};
+  return r;
+}
+
+// Σ w[k]·q[k], summed in mirror-symmetric pairs so that a curve shared by two patches that run
+// it in opposite directions evaluates to the same bits.
+Vec3 combine4(const std::array<double, 4>& w, const Vec3 q[4]) {
+  return (w[0] * q[0] + w[3] * q[3]) + (w[1] * q[1] + w[2] * q[2]);
+}
+
+struct SurfacePoint {
+  Vec3 p, su, sv;
+};
+
+SurfacePoint evaluate(const BezierPatch& patch, const Basis& bu, const Basis& bv) {
+  Vec3 row_p[4], row_d[4];
+  for (int i = 0; i < 4; ++i) {
+    const Vec3* row = &patch.p[static_cast<std::size_t>(4 * i)];
+    row_p[i] = combine4(bu.b, row);
+    row_d[i] = combine4(bu.d, row);
+  }
+  return {combine4(bv.b, row_p), combine4(bv.b, row_d), combine4(bv.d, row_p)};
+}
+
+// The unnormalized normal cross(Su, Sv) at grid point (u, v); at a degenerate point (a collapsed
+// control row makes Su or Sv vanish) the normal a small step into the patch. Zero if every step
+// fails (the caller then falls back to face normals).
+Vec3 patch_normal(const BezierPatch& patch, const SurfacePoint& sp, double u, double v,
+                  double tiny) {
+  Vec3 n = cross(sp.su, sp.sv);
+  if (length(n) > tiny) return n;
+  for (const double step : {1e-5, 1e-3, 1e-2}) {
+    const double u2 = u < 0.5 ? u + step : u - step;
+    const double v2 = v < 0.5 ? v + step : v - step;
+    const SurfacePoint q = evaluate(patch, basis(u2, 1 - u2), basis(v2, 1 - v2));
+    n = cross(q.su, q.sv);
+    if (length(n) > tiny) return n;
+  }
+  return {};
+}
+
+// Joins vertices whose positions lie within `eps` (max norm) of each other, drops triangles with
+// two corners at one position, and merges each set of coincident vertices whose normals are
+// within the crease angle (cos >= crease_cos) of the set's first one into a single vertex with
+// the normalized mean normal. Zero normals (failed evaluations) take the area-weighted face
+// normal afterwards.
+Mesh weld(const Mesh& in, double eps, double crease_cos) {
+  const std::size_t n = in.positions.size();
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return in.positions[a].x < in.positions[b].x; });
+  for (std::size_t a = 0; a < n; ++a) {
+    const Vec3 pa = in.positions[order[a]];
+    for (std::size_t b = a + 1; b < n && in.positions[order[b]].x - pa.x <= eps; ++b) {
+      const Vec3 pb = in.positions[order[b]];
+      if (std::abs(pb.y - pa.y) <= eps && std::abs(pb.z - pa.z) <= eps) {
+        const int ra = find(order[a]), rb = find(order[b]);
+        if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+      }
+    }
+  }
+
+  // Clusters: per position group, one output vertex per normal direction.
+  struct Cluster {
+    Vec3 direction;  // the first non-zero member normal (unit)
+    Vec3 sum;
+    int out = -1;
+  };
+  std::map<int, std::vector<Cluster>> groups;
+  std::vector<int> vertex_out(n);
+  Mesh out;
+  for (std::size_t i = 0; i < n; ++i) {
+    auto& clusters = groups[find(static_cast<int>(i))];
+    const Vec3 nrm = normalized_or(in.normals[i], {});
+    Cluster* hit = nullptr;
+    for (Cluster& c : clusters) {
+      if (nrm == Vec3{} || c.direction == Vec3{} || dot(c.direction, nrm) >= crease_cos) {
+        hit = &c;
+        break;
+      }
+    }
+    if (hit == nullptr) {
+      clusters.push_back({nrm, {}, static_cast<int>(out.positions.size())});
+      out.positions.push_back(in.positions[i]);
+      hit = &clusters.back();
+    }
+    if (hit->direction == Vec3{}) hit->direction = nrm;
+    hit->sum = hit->sum + nrm;
+    vertex_out[i] = hit->out;
+  }
+  out.normals.assign(out.positions.size(), {});
+  for (const auto& [root, clusters] : groups) {
+    for (const Cluster& c : clusters) out.normals[c.out] = normalized_or(c.sum, {});
+  }
+  for (const auto& t : in.triangles) {
+    const int g0 = find(t[0]), g1 = find(t[1]), g2 = find(t[2]);
+    if (g0 == g1 || g1 == g2 || g2 == g0) continue;
+    const std::array<int, 3> tri{vertex_out[t[0]], vertex_out[t[1]], vertex_out[t[2]]};
+    const Vec3 fn = cross(out.positions[tri[1]] - out.positions[tri[0]],
+                          out.positions[tri[2]] - out.positions[tri[0]]);
+    if (fn == Vec3{}) continue;
+    out.triangles.push_back(tri);
+  }
+  remove_unreferenced(out);
+  const std::vector<Vec3> faces = area_weighted_normals(out.positions, out.triangles);
+  for (std::size_t i = 0; i < out.normals.size(); ++i) {
+    if (out.normals[i] == Vec3{}) out.normals[i] = faces[i];
+  }
+  return out;
+}
+
+// ---- PLY ----
+
+enum class PlyType { kI8, kU8, kI16, kU16, kI32, kU32, kF32, kF64 };
+
+std::optional<PlyType> ply_type(std::string_view name) {
+  static const std::pair<std::string_view, PlyType> kNames[] = {
+      {"char", PlyType::kI8},    {"int8", PlyType::kI8},     {"uchar", PlyType::kU8},
+      {"uint8", PlyType::kU8},   {"short", PlyType::kI16},   {"int16", PlyType::kI16},
+      {"ushort", PlyType::kU16}, {"uint16", PlyType::kU16},  {"int", PlyType::kI32},
+      {"int32", PlyType::kI32},  {"uint", PlyType::kU32},    {"uint32", PlyType::kU32},
+      {"float", PlyType::kF32},  {"float32", PlyType::kF32}, {"double", PlyType::kF64},
+      {"float64", PlyType::kF64}};
+  for (const auto& [n, t] : kNames) {
+    if (n == name) return t;
+  }
+  return std::nullopt;
+}
+
+bool is_integer_type(PlyType t) { return t != PlyType::kF32 && t != PlyType::kF64; }
+
+std::size_t type_size(PlyType t) {
+  switch (t) {
+    case PlyType::kI8:
+    case PlyType::kU8:
+      return 1;
+    case PlyType::kI16:
+    case PlyType::kU16:
+      return 2;
+    case PlyType::kI32:
+    case PlyType::kU32:
+    case PlyType::kF32:
+      return 4;
+    case PlyType::kF64:
+      return 8;
+  }
+  return 0;
+}
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::kF32;
+  bool is_list = false;
+  PlyType count_type = PlyType::kU8;
+};
+
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+// The body as a stream of numbers: ascii tokens (with their line) or little-endian binary.
+class PlyBody {
+ public:
+  PlyBody(const fs::path& path, std::string_view data, bool ascii, int first_line)
+      : path_(path), data_(data), ascii_(ascii), line_(first_line) {}
+
+  // The next value of type t; `what` names it for errors ("vertex 3", "face 7").
+  double number(PlyType t, const std::string& what) {
+    if (ascii_) {
+      const std::string_view tok = token(what);
+      if (is_integer_type(t)) {
+        const auto v = parse_integer(tok);
+        if (!v) fail_at(path_, token_line_, fmt::format("{}: malformed integer '{}'", what, tok));
+        return static_cast<double>(*v);
+      }
+      const auto v = parse_double(tok);
+      if (!v) fail_at(path_, token_line_, fmt::format("{}: malformed number '{}'", what, tok));
+      return *v;
+    }
+    const std::size_t size = type_size(t);
+    if (data_.size() - pos_ < size) {
+      fail_file(path_, fmt::format("binary data ends inside {}", what));
+    }
+    std::uint64_t bits = 0;
+    for (std::size_t k = 0; k < size; ++k) {
+      bits |= static_cast<std::uint64_t>(static_cast<unsigned char>(data_[pos_ + k])) << (8 * k);
+    }
+    pos_ += size;
+    switch (t) {
+      case PlyType::kI8:
+        return static_cast<std::int8_t>(bits);
+      case PlyType::kU8:
+        return static_cast<std::uint8_t>(bits);
+      case PlyType::kI16:
+        return static_cast<std::int16_t>(bits);
+      case PlyType::kU16:
+        return static_cast<std::uint16_t>(bits);
+      case PlyType::kI32:
+        return static_cast<std::int32_t>(bits);
+      case PlyType::kU32:
+        return static_cast<std::uint32_t>(bits);
+      case PlyType::kF32: {
+        const double v = std::bit_cast<float>(static_cast<std::uint32_t>(bits));
+        if (!std::isfinite(v)) fail_file(path_, fmt::format("{}: non-finite value", what));
+        return v;
+      }
+      case PlyType::kF64: {
+        const double v = std::bit_cast<double>(bits);
+        if (!std::isfinite(v)) fail_file(path_, fmt::format("{}: non-finite value", what));
+        return v;
+      }
+    }
+    return 0;
+  }
+
+  // Throws unless only whitespace (ascii) or nothing (binary) is left.
+  void expect_end() {
+    if (ascii_) {
+      skip_space();
+      if (pos_ < data_.size()) fail_at(path_, line_, "unexpected data after the last element");
+    } else if (pos_ < data_.size()) {
+      fail_file(path_,
+                fmt::format("{} bytes of binary data after the last element", data_.size() - pos_));
+    }
+  }
+
+  [[nodiscard]] int line() const { return token_line_; }  // of the last ascii token
+  [[nodiscard]] bool ascii() const { return ascii_; }
+
+ private:
+  void skip_space() {
+    while (pos_ < data_.size() && (is_space(data_[pos_]) || data_[pos_] == '\n')) {
+      if (data_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+  }
+  std::string_view token(const std::string& what) {
+    skip_space();
+    if (pos_ >= data_.size()) fail_at(path_, line_, fmt::format("data ends before {}", what));
+    const std::size_t start = pos_;
+    while (pos_ < data_.size() && !is_space(data_[pos_]) && data_[pos_] != '\n') ++pos_;
+    token_line_ = line_;
+    return data_.substr(start, pos_ - start);
+  }
+
+  const fs::path& path_;
+  std::string_view data_;
+  bool ascii_;
+  std::size_t pos_ = 0;
+  int line_;
+  int token_line_ = 0;
+};
+
+}  // namespace
+
+// ---- Mesh helpers ----
+
+void check(const Mesh& m) {
+  if (m.normals.size() != m.positions.size()) {
+    throw Error(
+        fmt::format("mesh: {} normals for {} positions", m.normals.size(), m.positions.size()));
+  }
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    if (!finite(m.positions[i])) throw Error(fmt::format("mesh: position {} is not finite", i));
+    const double len = length(m.normals[i]);
+    if (!std::isfinite(len) || std::abs(len - 1) > 1e-6) {
+      throw Error(fmt::format("mesh: normal {} has length {} (must be 1)", i, len));
+    }
+  }
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    for (const int i : m.triangles[t]) {
+      if (i < 0 || static_cast<std::size_t>(i) >= m.positions.size()) {
+        throw Error(fmt::format("mesh: triangle {} uses vertex {} (there are {})", t, i,
+                                m.positions.size()));
+      }
+    }
+  }
+}
+
+Vec3 face_normal(const Mesh& m, int t) {
+  const auto& idx = m.triangles[static_cast<std::size_t>(t)];
+  const Vec3 p0 = m.positions[idx[0]];
+  return cross(m.positions[idx[1]] - p0, m.positions[idx[2]] - p0);
+}
+
+double signed_volume(const Mesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles) {
+    v += dot(m.positions[t[0]], cross(m.positions[t[1]], m.positions[t[2]]));
+  }
+  return v / 6;
+}
+
+void compute_vertex_normals(Mesh& m) {
+  m.normals = area_weighted_normals(m.positions, m.triangles);
+}
+
+Mesh flat_normals_split(const Mesh& m) {
+  Mesh out;
+  out.positions.reserve(3 * m.triangles.size());
+  out.normals.reserve(3 * m.triangles.size());
+  out.triangles.reserve(m.triangles.size());
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const Vec3 n = normalized_or(face_normal(m, static_cast<int>(t)), kUp);
+    const int base = static_cast<int>(out.positions.size());
+    for (const int i : m.triangles[t]) {
+      out.positions.push_back(m.positions[i]);
+      out.normals.push_back(n);
+    }
+    out.triangles.push_back({base, base + 1, base + 2});
+  }
+  return out;
+}
+
+// ---- Built-in objects ----
+
+Mesh octahedron_sphere(int subdivisions) {
+  if (subdivisions < 0 || subdivisions > 8) {
+    throw Error(fmt::format("octahedron sphere: subdivisions {} outside [0, 8]", subdivisions));
+  }
+  Mesh m;
+  // 0: +x, 1: -x, 2: +y, 3: -y, 4: +z, 5: -z.
+  m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  // One face per octant (sx, sy, sz): (X, Y, Z) is counter-clockwise from outside in the
+  // (+, +, +) octant; every sign flip is a reflection, so an odd number of them reverses it.
+  for (int octant = 0; octant < 8; ++octant) {
+    const int x = (octant & 1) ? 1 : 0, y = (octant & 2) ? 3 : 2, z = (octant & 4) ? 5 : 4;
+    const int flips = (octant & 1) + ((octant >> 1) & 1) + ((octant >> 2) & 1);
+    if (flips % 2 == 0) {
+      m.triangles.push_back({x, y, z});
+    } else {
+      m.triangles.push_back({x, z, y});
+    }
+  }
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<int, int>, int> midpoint;
+    const auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto it = midpoint.find(key);
+      if (it != midpoint.end()) return it->second;
+      const int i = static_cast<int>(m.positions.size());
+      m.positions.push_back(normalized(0.5 * (m.positions[a] + m.positions[b])));
+      midpoint.emplace(key, i);
+      return i;
+    };
+    std::vector<std::array<int, 3>> next;
+    next.reserve(4 * m.triangles.size());
+    for (const auto& [a, b, c] : m.triangles) {
+      const int ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      next.push_back({a, ab, ca});
+      next.push_back({ab, b, bc});
+      next.push_back({ca, bc, c});
+      next.push_back({ab, bc, ca});
+    }
+    m.triangles = std::move(next);
+  }
+  m.normals = m.positions;
+  return m;
+}
+
+Mesh dodecahedron() {
+  const double phi = (1 + std::sqrt(5.0)) / 2, iphi = 1 / phi;
+  Mesh m;
+  for (const double sx : {-1.0, 1.0}) {
+    for (const double sy : {-1.0, 1.0}) {
+      for (const double sz : {-1.0, 1.0}) m.positions.push_back({sx, sy, sz});
+    }
+  }
+  for (const double a : {-1.0, 1.0}) {
+    for (const double b : {-1.0, 1.0}) {
+      m.positions.push_back({0, a * iphi, b * phi});
+      m.positions.push_back({a * iphi, b * phi, 0});
+      m.positions.push_back({a * phi, 0, b * iphi});
+    }
+  }
+  for (Vec3& p : m.positions) p = p * (1 / std::sqrt(3.0));
+  // Each face is centred on a vertex direction of the dual icosahedron, (0, ±φ, ±1),
+  // (±1, 0, ±φ), (±φ, ±1, 0): its 5 corners are the vertices farthest along that axis.
+  std::vector<Vec3> axes;
+  for (const double a : {-1.0, 1.0}) {
+    for (const double b : {-1.0, 1.0}) {
+      axes.push_back({0, a * phi, b});
+      axes.push_back({a, 0, b * phi});
+      axes.push_back({a * phi, b, 0});
+    }
+  }
+  for (const Vec3 axis : axes) {
+    const Vec3 d = normalized(axis);
+    double best = -2;
+    for (const Vec3& p : m.positions) best = std::max(best, dot(p, d));
+    std::vector<int> face;
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      if (dot(m.positions[i], d) > best - 1e-9) face.push_back(static_cast<int>(i));
+    }
+    if (face.size() != 5) throw Error("dodecahedron: internal error (face is not a pentagon)");
+    // Counter-clockwise about the outward axis d: increasing angle in the frame (e1, e2, d).
+    const Vec3 centre = best * d;
+    const Vec3 e1 = normalized(m.positions[face[0]] - centre);
+    const Vec3 e2 = cross(d, e1);
+    const auto angle = [&](int i) {
+      const Vec3 r = m.positions[i] - centre;
+      return std::atan2(dot(r, e2), dot(r, e1));
+    };
+    std::sort(face.begin(), face.end(), [&](int a, int b) { return angle(a) < angle(b); });
+    fan(face, m.triangles);
+  }
+  m.normals = m.positions;
+  for (Vec3& n : m.normals) n = normalized(n);
+  return m;
+}
+
+Mesh sphere40() {
+  constexpr int kSlices = 5, kRings = 4;  // 5 stacks: 4 rings between the poles
+  constexpr double kPi = 3.14159265358979323846;
+  Mesh m;
+  m.positions.push_back({0, 1, 0});  // north pole: 0
+  for (int k = 1; k <= kRings; ++k) {
+    const double theta = kPi * k / (kRings + 1);
+    for (int j = 0; j < kSlices; ++j) {
+      const double lon = 2 * kPi * j / kSlices;
+      m.positions.push_back(
+          {std::sin(theta) * std::sin(lon), std::cos(theta), std::sin(theta) * std::cos(lon)});
+    }
+  }
+  m.positions.push_back({0, -1, 0});  // south pole: 1 + 5·4 = 21
+  const int south = static_cast<int>(m.positions.size()) - 1;
+  const auto ring = [&](int k, int j) { return 1 + (k - 1) * kSlices + (j % kSlices); };
+  // Seen from outside with +y up, longitude grows to the right and rings go down.
+  for (int j = 0; j < kSlices; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
+  for (int k = 1; k < kRings; ++k) {
+    for (int j = 0; j < kSlices; ++j) {
+      const int ul = ring(k, j), ur = ring(k, j + 1), ll = ring(k + 1, j), lr = ring(k + 1, j + 1);
+      m.triangles.push_back({ul, ll, lr});
+      m.triangles.push_back({ul, lr, ur});
+    }
+  }
+  for (int j = 0; j < kSlices; ++j) {
+    m.triangles.push_back({ring(kRings, j), south, ring(kRings, j + 1)});
+  }
+  m.normals = m.positions;
+  return m;
+}
+
+Mesh single_triangle() {
+  const double h = std::sqrt(3.0) / 2;
+  const Vec3 centre{0, 0, -2};
+  Mesh m;
+  m.positions = {{-h, -0.5, 0}, {h, -0.5, 0}, {0, 1, 0}};
+  for (const Vec3& p : m.positions) m.normals.push_back(normalized(p - centre));
+  m.triangles = {{0, 1, 2}};
+  return m;
+}
+
+// ---- Bézier-patch teapot ----
+
+std::vector<BezierPatch> read_bpt_patches(const fs::path& path) {
+  const std::string text = read_file(path);
+  Lines lines(text);
+  std::string_view line;
+  // The next line that is not blank, split into tokens; fails at the end of the file.
+  const auto next_tokens = [&](const std::string& expected) {
+    while (lines.next(line)) {
+      auto tokens = split_ws(line);
+      if (!tokens.empty()) return tokens;
+    }
+    fail_at(path, lines.number(), fmt::format("file ends where {} was expected", expected));
+  };
+  auto tokens = next_tokens("the patch count");
+  const auto count = parse_integer(tokens[0]);
+  if (tokens.size() != 1 || !count || *count < 1 || *count > 100000) {
+    fail_at(path, lines.number(), "expected the patch count (an integer in [1, 100000])");
+  }
+  std::vector<BezierPatch> patches(static_cast<std::size_t>(*count));
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    tokens = next_tokens(fmt::format("patch {}'s degrees", k + 1));
+    if (tokens.size() != 2 || tokens[0] != "3" || tokens[1] != "3") {
+      fail_at(path, lines.number(),
+              fmt::format("patch {}: expected the degrees '3 3' (only bicubic patches)", k + 1));
+    }
+    for (Vec3& p : patches[k].p) {
+      tokens = next_tokens(fmt::format("a control point of patch {}", k + 1));
+      if (tokens.size() != 3) {
+        fail_at(path, lines.number(),
+                fmt::format("patch {}: a control point needs 3 coordinates, got {}", k + 1,
+                            tokens.size()));
+      }
+      double c[3];
+      for (int i = 0; i < 3; ++i) {
+        const auto v = parse_double(tokens[i]);
+        if (!v) fail_at(path, lines.number(), fmt::format("malformed number '{}'", tokens[i]));
+        c[i] = *v;
+      }
+      p = {c[0], c[1], c[2]};
+    }
+  }
+  while (lines.next(line)) {
+    if (!split_ws(line).empty()) {
+      fail_at(path, lines.number(), fmt::format("unexpected data after {} patches", *count));
+    }
+  }
+  return patches;
+}
+
+Mesh tessellate(const std::vector<BezierPatch>& patches, int resolution) {
+  if (resolution < 1 || resolution > 256) {
+    throw Error(fmt::format("Bézier tessellation: resolution {} outside [1, 256]", resolution));
+  }
+  const int n = resolution;
+  std::vector<Basis> grid(static_cast<std::size_t>(n + 1));
+  for (int k = 0; k <= n; ++k) {
+    grid[k] = basis(static_cast<double>(k) / n, static_cast<double>(n - k) / n);
+  }
+  Mesh raw;
+  Vec3 lo{1e300, 1e300, 1e300}, hi = -lo;
+  for (const BezierPatch& patch : patches) {
+    Vec3 plo = patch.p[0], phi = patch.p[0];
+    for (const Vec3& q : patch.p) {
+      plo = {std::min(plo.x, q.x), std::min(plo.y, q.y), std::min(plo.z, q.z)};
+      phi = {std::max(phi.x, q.x), std::max(phi.y, q.y), std::max(phi.z, q.z)};
+    }
+    lo = {std::min(lo.x, plo.x), std::min(lo.y, plo.y), std::min(lo.z, plo.z)};
+    hi = {std::max(hi.x, phi.x), std::max(hi.y, phi.y), std::max(hi.z, phi.z)};
+    const double size = length(phi - plo);
+    const double tiny = 1e-12 * size * size;
+    const int base = static_cast<int>(raw.positions.size());
+    for (int iv = 0; iv <= n; ++iv) {
+      for (int iu = 0; iu <= n; ++iu) {
+        const SurfacePoint sp = evaluate(patch, grid[iu], grid[iv]);
+        raw.positions.push_back(sp.p);
+        raw.normals.push_back(patch_normal(patch, sp, static_cast<double>(iu) / n,
+                                           static_cast<double>(iv) / n, tiny));
+      }
+    }
+    // Cell corners a = (u, v), b = (u + du, v), c = (u + du, v + dv), d = (u, v + dv): (a, b, c)
+    // and (a, c, d) turn from u towards v, so their normals follow cross(Su, Sv).
+    for (int iv = 0; iv < n; ++iv) {
+      for (int iu = 0; iu < n; ++iu) {
+        const int a = base + iv * (n + 1) + iu, b = a + 1, d = a + n + 1, c = d + 1;
+        raw.triangles.push_back({a, b, c});
+        raw.triangles.push_back({a, c, d});
+      }
+    }
+  }
+  if (patches.empty()) return raw;
+  const double eps = 1e-9 * std::max(length(hi - lo), 1e-300);
+  Mesh m = weld(raw, eps, 0.5);  // crease: normals more than 60° apart stay separate
+  check(m);
+  return m;
+}
+
+Mesh read_teapot_bpt(const fs::path& path, int resolution) {
+  Mesh m = tessellate(read_bpt_patches(path), resolution);
+  if (m.triangles.empty()) fail_file(path, "no triangles");
+  const auto rotate = [](Vec3 v) { return Vec3{v.x, v.z, -v.y}; };
+  for (Vec3& p : m.positions) p = rotate(p);
+  for (Vec3& nrm : m.normals) nrm = rotate(nrm);
+  return m;
+}
+
+Mesh teapot(int resolution) {
+  return read_teapot_bpt(data_root() / "data" / "teapot.bpt",
+                         resolution == 0 ? kTeapotDefaultResolution : resolution);
+}
+
+// ---- Mesh files ----
+
+Mesh read_obj(const fs::path& path) {
+  const std::string text = read_file(path);
+  std::vector<Vec3> positions, normals;
+  struct Corner {
+    long long v = 0;   // 0-based (may be out of range until checked)
+    long long n = -1;  // 0-based, -1: none
+  };
+  struct Face {
+    int line = 0;
+    std::size_t first = 0, count = 0;  // into corners
+  };
+  std::vector<Corner> corners;
+  std::vector<Face> faces;
+  Lines lines(text);
+  std::string_view line;
+  while (lines.next(line)) {
+    const int at = lines.number();
+    if (const auto hash = line.find('#'); hash != std::string_view::npos)
+      line = line.substr(0, hash);
+    const auto tokens = split_ws(line);
+    if (tokens.empty()) continue;
+    const std::string_view kw = tokens[0];
+    if (kw == "v" || kw == "vn") {
+      if (kw == "v" ? tokens.size() < 4 : tokens.size() != 4) {
+        fail_at(path, at, fmt::format("'{}' needs 3 coordinates, got {}", kw, tokens.size() - 1));
+      }
+      double c[3] = {0, 0, 0};
+      for (std::size_t k = 1; k < tokens.size(); ++k) {
+        const auto v = parse_double(tokens[k]);
+        if (!v) fail_at(path, at, fmt::format("malformed number '{}'", tokens[k]));
+        if (k <= 3) c[k - 1] = *v;
+      }
+      (kw == "v" ? positions : normals).push_back({c[0], c[1], c[2]});
+    } else if (kw == "f") {
+      if (tokens.size() < 4) {
+        fail_at(path, at,
+                fmt::format("face with {} vertices (needs at least 3)", tokens.size() - 1));
+      }
+      Face face{at, corners.size(), tokens.size() - 1};
+      for (std::size_t k = 1; k < tokens.size(); ++k) {
+        const std::string_view tok = tokens[k];
+        std::string_view parts[3];
+        std::size_t nparts = 0, start = 0;
+        for (std::size_t i = 0; i <= tok.size(); ++i) {
+          if (i == tok.size() || tok[i] == '/') {
+            if (nparts == 3) fail_at(path, at, fmt::format("malformed face corner '{}'", tok));
+            parts[nparts++] = tok.substr(start, i - start);
+            start = i + 1;
+          }
+        }
+        // i, i/j, i//k, i/j/k: the vertex index is required, the others optional.
+        const auto index = [&](std::string_view s, std::size_t count, const char* what) {
+          const auto v = parse_integer(s);
+          if (!v || *v == 0) {
+            fail_at(path, at, fmt::format("malformed {} index '{}' in '{}'", what, s, tok));
+          }
+          return *v > 0 ? *v - 1 : static_cast<long long>(count) + *v;
+        };
+        Corner c;
+        c.v = index(parts[0], positions.size(), "vertex");
+        if (nparts >= 2 && !parts[1].empty()) (void)index(parts[1], 0, "texture");
+        if (nparts == 3 && !parts[2].empty()) c.n = index(parts[2], normals.size(), "normal");
+        if (c.v < 0) fail_at(path, at, fmt::format("vertex index in '{}' out of range", tok));
+        if (nparts == 3 && !parts[2].empty() && c.n < 0) {
+          fail_at(path, at, fmt::format("normal index in '{}' out of range", tok));
+        }
+        corners.push_back(c);
+      }
+      faces.push_back(face);
+    }
+    // Everything else (vt, o, g, s, usemtl, mtllib, l, p, ...) is ignored.
+  }
+  if (faces.empty()) fail_file(path, "no triangles (no 'f' statements)");
+  for (const Face& f : faces) {
+    for (std::size_t k = f.first; k < f.first + f.count; ++k) {
+      if (corners[k].v >= static_cast<long long>(positions.size())) {
+        fail_at(path, f.line,
+                fmt::format("vertex index {} out of range (there are {} vertices)",
+                            corners[k].v + 1, positions.size()));
+      }
+      if (corners[k].n >= static_cast<long long>(normals.size())) {
+        fail_at(path, f.line,
+                fmt::format("normal index {} out of range (there are {} normals)", corners[k].n + 1,
+                            normals.size()));
+      }
+    }
+  }
+  // Area-weighted normals per position, for corners without a (usable) normal.
+  std::vector<std::array<int, 3>> position_tris;
+  for (const Face& f : faces) {
+    std::vector<int> poly;
+    for (std::size_t k = f.first; k < f.first + f.count; ++k) {
+      poly.push_back(static_cast<int>(corners[k].v));
+    }
+    fan(poly, position_tris);
+  }
+  const std::vector<Vec3> computed = area_weighted_normals(positions, position_tris);
+  Mesh m;
+  std::map<std::pair<long long, long long>, int> vertex_of;
+  for (const Face& f : faces) {
+    std::vector<int> poly;
+    for (std::size_t k = f.first; k < f.first + f.count; ++k) {
+      Corner c = corners[k];
+      const Vec3 given = c.n >= 0 ? normalized_or(normals[c.n], {}) : Vec3{};
+      if (given == Vec3{}) c.n = -1;
+      const auto [it, added] =
+          vertex_of.emplace(std::pair{c.v, c.n}, static_cast<int>(m.positions.size()));
+      if (added) {
+        m.positions.push_back(positions[c.v]);
+        m.normals.push_back(c.n >= 0 ? given : computed[c.v]);
+      }
+      poly.push_back(it->second);
+    }
+    fan(poly, m.triangles);
+  }
+  return m;
+}
+
+Mesh read_ply(const fs::path& path) {
+  const std::string text = read_file(path);
+  Lines lines(text);
+  std::string_view line;
+  if (!lines.next(line) || line != "ply")
+    fail_at(path, 1, "not a PLY file (first line is not 'ply')");
+  bool ascii = false, have_format = false;
+  std::vector<PlyElement> elements;
+  bool ended = false;
+  while (lines.next(line)) {
+    const int at = lines.number();
+    const auto tokens = split_ws(line);
+    if (tokens.empty()) continue;
+    const std::string_view kw = tokens[0];
+    if (kw == "end_header") {
+      ended = true;
+      break;
+    }
+    if (kw == "comment" || kw == "obj_info") continue;
+    if (kw == "format") {
+      if (tokens.size() != 3)
+        fail_at(path, at, "expected 'format <ascii|binary_little_endian> 1.0'");
+      if (tokens[1] == "binary_big_endian") {
+        fail_at(path, at,
+                "binary_big_endian PLY is unsupported (use ascii or binary_little_endian)");
+      }
+      if (tokens[1] != "ascii" && tokens[1] != "binary_little_endian") {
+        fail_at(path, at, fmt::format("unknown PLY format '{}'", tokens[1]));
+      }
+      if (tokens[2] != "1.0") {
+        fail_at(path, at, fmt::format("unsupported PLY version '{}' (only 1.0)", tokens[2]));
+      }
+      ascii = tokens[1] == "ascii";
+      have_format = true;
+    } else if (kw == "element") {
+      const auto count = tokens.size() == 3 ? parse_integer(tokens[2]) : std::nullopt;
+      if (!count || *count < 0 || *count > (1LL << 31) - 1) {
+        fail_at(path, at, "expected 'element <name> <count>' with a count in [0, 2^31 - 1]");
+      }
+      elements.push_back({std::string(tokens[1]), *count, {}});
+    } else if (kw == "property") {
+      if (elements.empty()) fail_at(path, at, "'property' before any 'element'");
+      PlyProperty p;
+      std::optional<PlyType> type;
+      if (tokens.size() == 5 && tokens[1] == "list") {
+        const auto count_type = ply_type(tokens[2]);
+        type = ply_type(tokens[3]);
+        if (!count_type || !is_integer_type(*count_type)) {
+          fail_at(path, at, fmt::format("list count type '{}' is not an integer type", tokens[2]));
+        }
+        p.is_list = true;
+        p.count_type = *count_type;
+        if (!type) fail_at(path, at, fmt::format("unknown property type '{}'", tokens[3]));
+        p.name = std::string(tokens[4]);
+      } else if (tokens.size() == 3 && tokens[1] != "list") {
+        type = ply_type(tokens[1]);
+        if (!type) fail_at(path, at, fmt::format("unknown property type '{}'", tokens[1]));
+        p.name = std::string(tokens[2]);
+      } else {
+        fail_at(path, at,
+                "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
+      }
+      p.type = *type;
+      elements.back().properties.push_back(p);
+    } else {
+      fail_at(path, at, fmt::format("unknown header line '{}'", kw));
+    }
+  }
+  if (!ended) fail_at(path, lines.number(), "header without 'end_header'");
+  if (!have_format) fail_at(path, lines.number(), "header without a 'format' line");
+
+  // Where the properties we need sit.
+  const auto find_element = [&](std::string_view name) -> const PlyElement* {
+    for (const auto& e : elements) {
+      if (e.name == name) return &e;
+    }
+    return nullptr;
+  };
+  const PlyElement* vertex = find_element("vertex");
+  const PlyElement* face = find_element("face");
+  if (vertex == nullptr) fail_file(path, "no 'element vertex' in the header");
+  if (face == nullptr || face->count == 0) fail_file(path, "no triangles (no faces)");
+  const auto slot = [](const PlyElement& e, std::string_view name) {
+    for (std::size_t i = 0; i < e.properties.size(); ++i) {
+      if (e.properties[i].name == name) return static_cast<int>(i);
+    }
+    return -1;
+  };
+  const int sx = slot(*vertex, "x"), sy = slot(*vertex, "y"), sz = slot(*vertex, "z");
+  const int snx = slot(*vertex, "nx"), sny = slot(*vertex, "ny"), snz = slot(*vertex, "nz");
+  if (sx < 0 || sy < 0 || sz < 0) fail_file(path, "element vertex lacks property x, y or z");
+  for (const int s : {sx, sy, sz, snx, sny, snz}) {
+    if (s >= 0 && vertex->properties[s].is_list) {
+      fail_file(path, fmt::format("vertex property '{}' is a list", vertex->properties[s].name));
+    }
+  }
+  const bool has_normals = snx >= 0 && sny >= 0 && snz >= 0;
+  if (!has_normals && (snx >= 0 || sny >= 0 || snz >= 0)) {
+    fail_file(path, "element vertex has some but not all of nx, ny, nz");
+  }
+  int sidx = slot(*face, "vertex_indices");
+  if (sidx < 0) sidx = slot(*face, "vertex_index");
+  if (sidx < 0) fail_file(path, "element face lacks a list property vertex_indices");
+  if (!face->properties[sidx].is_list || !is_integer_type(face->properties[sidx].type)) {
+    fail_file(path, "face property vertex_indices must be a list of integers");
+  }
+
+  // Which of x, y, z, nx, ny, nz (0..5) each vertex property is, -1 for none.
+  std::vector<int> vertex_slot(vertex->properties.size(), -1);
+  const int slots[6] = {sx, sy, sz, snx, sny, snz};
+  for (int k = 0; k < 6; ++k) {
+    if (slots[k] >= 0) vertex_slot[static_cast<std::size_t>(slots[k])] = k;
+  }
+  const std::size_t data_start = std::min(lines.offset(), text.size());
+  PlyBody body(path, std::string_view(text).substr(data_start), ascii, lines.number() + 1);
+  std::vector<Vec3> positions, normals;
+  std::vector<std::vector<long long>> polygons;
+  std::vector<int> polygon_lines;
+  for (const PlyElement& e : elements) {
+    for (long long item = 0; item < e.count; ++item) {
+      const std::string what = fmt::format("{} {}", e.name, item);
+      double values[6] = {0, 0, 0, 0, 0, 0};
+      std::vector<long long> indices;
+      int count_line = 0;
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const PlyProperty& p = e.properties[k];
+        if (!p.is_list) {
+          const double v = body.number(p.type, what);
+          if (&e == vertex && vertex_slot[k] >= 0) values[vertex_slot[k]] = v;
+          continue;
+        }
+        const double count = body.number(p.count_type, what);
+        count_line = body.line();
+        if (count < 0 || count > 1e6) {
+          if (ascii) fail_at(path, count_line, fmt::format("{}: list length {}", what, count));
+          fail_file(path, fmt::format("{}: list length {}", what, count));
+        }
+        const bool wanted = &e == face && static_cast<int>(k) == sidx;
+        for (long long i = 0; i < static_cast<long long>(count); ++i) {
+          const double v = body.number(p.type, what);
+          if (wanted) indices.push_back(static_cast<long long>(v));
+        }
+      }
+      if (&e == vertex) {
+        positions.push_back({values[0], values[1], values[2]});
+        normals.push_back({values[3], values[4], values[5]});
+      } else if (&e == face) {
+        if (indices.size() < 3) {
+          const std::string msg =
+              fmt::format("{} has {} vertices (needs at least 3)", what, indices.size());
+          if (ascii) fail_at(path, count_line, msg);
+          fail_file(path, msg);
+        }
+        polygons.push_back(std::move(indices));
+        polygon_lines.push_back(count_line);
+      }
+    }
+  }
+  body.expect_end();
+
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    for (const long long i : polygons[f]) {
+      if (i < 0 || i >= static_cast<long long>(positions.size())) {
+        const std::string msg = fmt::format("face {}: vertex index {} out of range (there are {})",
+                                            f, i, positions.size());
+        if (ascii) fail_at(path, polygon_lines[f], msg);
+        fail_file(path, msg);
+      }
+    }
+  }
+  Mesh m;
+  m.positions = std::move(positions);
+  for (const auto& poly : polygons) {
+    std::vector<int> corners(poly.begin(), poly.end());
+    fan(corners, m.triangles);
+  }
+  const std::vector<Vec3> computed = area_weighted_normals(m.positions, m.triangles);
+  m.normals.resize(m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    m.normals[i] = has_normals ? normalized_or(normals[i], computed[i]) : computed[i];
+  }
+  return m;
+}
+
+Mesh read_mesh(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".obj") return read_obj(path);
+  if (ext == ".ply") return read_ply(path);
+  if (ext == ".bpt") return read_teapot_bpt(path, kTeapotDefaultResolution);
+  fail_file(path, "unknown mesh format (expected .obj, .ply or .bpt)");
+}
+
+Box bounding_box(const Mesh& m) {
+  if (m.positions.empty()) throw Error("an empty mesh has no bounding box");
+  Box b{m.positions[0], m.positions[0]};
+  for (const Vec3& p : m.positions) {
+    b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
+    b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
+  }
+  return b;
+}
+
+void normalize_to_unit_box(Mesh& m) {
+  if (m.positions.empty()) throw Error("cannot normalize an empty mesh");
+  const auto [lo, hi] = bounding_box(m);
+  const Vec3 extent = hi - lo;
+  const double largest = std::max({extent.x, extent.y, extent.z});
+  if (!(largest > 0)) throw Error("cannot normalize a mesh of zero extent");
+  const Vec3 centre = 0.5 * (lo + hi);
+  const double scale = 2 / largest;
+  for (Vec3& p : m.positions) p = (p - centre) * scale;
+}
+
+}  // namespace phongsim

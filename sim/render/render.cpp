@@ -1,0 +1,954 @@
+#include "sim/render/render.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "base/error.h"
+#include "base/output_file.h"
+#include "base/paths.h"
+#include "model/config.h"
+#include "model/kb.h"
+#include "model/kb_setup.h"
+#include "model/lyon.h"
+#include "model/quad.h"
+#include "model/quad_setup.h"
+#include "ref/kb_float.h"
+#include "ref/lyon_float.h"
+#include "ref/quad_float.h"
+#include "sim/cosim/harness.h"
+#include "sim/cosim/rtl_library.h"
+#include "sim/pipelines/registry.h"
+#include "sim/render/frame.h"
+#include "sim/render/scene.h"
+#include "sim/render/seed_methods.h"
+
+namespace phongsim {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace shading;  // the frame and what the methods share (sim/render/frame.h)
+
+// ---- Methods ----
+
+enum class Kind {
+  flat,
+  gouraud,
+  gouraud4,
+  quadratic,
+  pixel,
+  kb_exact,
+  kb_decompose,
+  kb_one_vector,
+  env_map,
+  blinn_map,
+  quad_blinn_map,
+  fast_phong,
+  fence,
+  highlight_track
+};
+
+struct Method {
+  MethodInfo info;
+  Kind kind;
+  // Per-pixel specular amount for unit N, L, V and Phong shininess n (Kind::pixel).
+  SpecularFn spec = nullptr;
+};
+
+double row(lyon::Spec s, Vec3 n, Vec3 l, Vec3 v, double shin) {
+  return lyon::specfuns(n, l, v, shin)[lyon::index(s)];
+}
+
+const std::vector<Method>& methods() {
+  using lyon::Spec;
+  static const std::vector<Method> table{
+      {{"flat", "one colour per triangle: the lighting model at the centroid, face normal", "",
+        true},
+       Kind::flat},
+      {{"gouraud", "lighting at the vertices, colour interpolated linearly (unit: quad/linear)",
+        "quad/linear", true},
+       Kind::gouraud},
+      {{"gouraud4", "Gouraud on the 4x-subdivided mesh (vertices and edge midpoints)", "", true},
+       Kind::gouraud4},
+      {{"quadratic",
+        "Vlasic 4.3: lighting at vertices and edge midpoints, eq. 4.1 per pixel "
+        "(unit: quad/default)",
+        "quad/default", true},
+       Kind::quadratic},
+      {{"phong", "Phong (R.L)^n, normal normalized per pixel (Figure 9 row 1)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::phong(n, l, v, s); }},
+      {{"lyon-k0", "Lyon f_0((n/2)|L-R|^2) (row 2; unit: Fig. 7, g2)", "lyon/fig7_k0", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 0); }},
+      {{"lyon-k1", "Lyon f_1 (row 3; unit: Fig. 7, g2)", "lyon/fig7_k1", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 1); }},
+      {{"lyon-k2", "Lyon f_2 (row 4; unit: Fig. 7, g2)", "lyon/default", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
+      {{"lyon-k3", "Lyon f_3 (unit: Fig. 7, g2)", "lyon/fig7_k3", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 3); }},
+      {{"lyon-fig8-k1", "Lyon f_1, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k1",
+        false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 1); }},
+      {{"lyon-fig8-k2", "Lyon f_2, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k2",
+        false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
+      {{"blinn", "Blinn-Phong (H*.N)^(4n) (row 5)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::blinn(n, l, v, s); }},
+      {{"halfway-unit-k2", "D = H* - N, f_2 (row 6)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::halfway_unit_k2, n, l, v, s); }},
+      {{"halfway-proj-k2", "D = H - (H.N)N, f_2 (row 7)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 2, 0); }},
+      {{"halfway-g2-proj-k2", "D = Hg2 - (Hg2.N)N, f_2 (row 8; unit: halfway)", "lyon/halfway",
+        false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 2, 2); }},
+      {{"halfway-g2-proj-k1", "as row 8 with f_1 (row 9)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 1, 2); }},
+      {{"halfway-g2-k2", "D = Hg2 - N, f_2 (row 10)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::halfway_g2_k2, n, l, v, s); }},
+      {{"halfway-proj-k1-fig8", "D = H - (H.N)N, f_1, root shininess (unit: halfway_fig8)",
+        "lyon/halfway_fig8", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 1, 0); }},
+      {{"kb-exact",
+        "Kuijk-Blake eq. 1: N, L, H rotated along each span, exact angles, quadratic cos^n", "",
+        true},
+       Kind::kb_exact},
+      {{"kb-decomp", "Kuijk-Blake eq. 2: angle decomposed into two linear angles, quadratic cos^n",
+        "", true},
+       Kind::kb_decompose},
+      {{"kb-onevec",
+        "Kuijk-Blake eq. 4: one linear angle per span, quadratic cos^n (unit: kb engine)",
+        "kb/default", true},
+       Kind::kb_one_vector},
+      {{"env-map",
+        "Vlasic 5.1: spherical environment map of the lights (eqs. 5.1-5.3), coordinates "
+        "linear; diffuse Gouraud",
+        "", true},
+       Kind::env_map},
+      {{"blinn-map",
+        "Vlasic 5.2: diffuse and specular Blinn textures (eqs. 5.4-5.7), coordinates linear", "",
+        true},
+       Kind::blinn_map},
+      {{"quad-blinn-map", "Vlasic 5.3: Blinn map, coordinates quadratic from six points", "", true},
+       Kind::quad_blinn_map},
+      {{"fast-phong", "Bishop-Weimer: N.L and N.H by 2nd-order Taylor expansion about the centroid",
+        "", true},
+       Kind::fast_phong},
+      {{"fence", "Lai-Tai: Phong at each span's end pixels, intensity linear between", "", true},
+       Kind::fence},
+      {{"highlight-track",
+        "Lai-Tai: Fence plus Phong on each light's highlight track, piecewise linear", "", true},
+       Kind::highlight_track},
+      {{"torrance-sparrow", "exp(-(4n/2) acos(H*.N)^2), Blinn's D2 (row 11)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::torrance_sparrow, n, l, v, s); }},
+      {{"trowbridge-reitz", "(1/(1 + (1 - (H*.N)^2) n))^2, Blinn's D3 (row 12)", "", false},
+       Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::trowbridge_reitz, n, l, v, s); }},
+  };
+  return table;
+}
+
+const Method& method(std::string_view name) {
+  for (const Method& m : methods()) {
+    if (m.info.name == name) return m;
+  }
+  std::string known;
+  for (const Method& m : methods())
+    known += fmt::format("{}{}", known.empty() ? "" : ", ", m.info.name);
+  throw Error(fmt::format("unknown method '{}' (known: {})", name, known));
+}
+
+const Method& phong() {
+  static const Method& m = method("phong");
+  return m;
+}
+
+// Figure 9's twelve rows.
+const std::vector<std::string> kShinyballsMethods{"phong",
+                                                  "lyon-k0",
+                                                  "lyon-k1",
+                                                  "lyon-k2",
+                                                  "blinn",
+                                                  "halfway-unit-k2",
+                                                  "halfway-proj-k2",
+                                                  "halfway-g2-proj-k2",
+                                                  "halfway-g2-proj-k1",
+                                                  "halfway-g2-k2",
+                                                  "torrance-sparrow",
+                                                  "trowbridge-reitz"};
+const std::vector<std::string> kMeshMethods{"flat",  "gouraud", "gouraud4", "quadratic",
+                                            "phong", "blinn",   "lyon-k2"};
+
+// ---- Hardware units: one configuration's model or Verilated RTL ----
+
+class Unit {
+ public:
+  Unit(const fs::path& config, Backend backend, bool no_build)
+      : cfg_(Config::load(config)),
+        model_(make_model(find_pipeline(cfg_.pipeline()), cfg_)),
+        backend_(backend) {
+    if (backend == Backend::rtl) {
+      const RtlPlugin plugin =
+          locate_rtl(cfg_, no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
+      library_ = RtlLibrary::open(plugin.path, plugin.gflags);
+    }
+  }
+
+  [[nodiscard]] const Config& config() const { return cfg_; }
+  [[nodiscard]] const PipelineModel& model() const { return *model_; }
+
+  // Every output of `vectors` (flattened raw inputs), in order.
+  std::vector<std::int64_t> run(const std::vector<std::int64_t>& vectors,
+                                const RenderProgress& progress, std::string_view what) {
+    model_->reset();  // the kb engine keeps span state between words
+    const std::size_t n_in = model_->inputs().size();
+    const std::size_t n_out = model_->outputs().size();
+    const std::uint64_t count = vectors.size() / n_in;
+    std::vector<std::int64_t> out;
+    if (backend_ == Backend::model) {
+      for (std::uint64_t i = 0; i < count; ++i) {
+        (void)model_->eval(std::span(vectors).subspan(i * n_in, n_in), out);
+        if (i % 4096 == 0) progress(what, i, count);
+      }
+      return out;
+    }
+    auto dut = library_->create(*model_);
+    std::uint64_t outputs = 0;
+    const HarnessResult r =
+        stream_vectors(*dut, n_in, n_out, vectors, [&](std::span<const std::int64_t> o) {
+          out.insert(out.end(), o.begin(), o.end());
+          if (++outputs % 4096 == 0) progress(what, outputs, 0);
+        });
+    if (r.reason != StopReason::finished || r.inputs != count) {
+      throw Error(fmt::format("{}: the RTL of {} stopped: {}", what, cfg_.origin(),
+                              r.message.empty() ? "not every input was accepted" : r.message));
+    }
+    return out;
+  }
+
+ private:
+  Config cfg_;
+  std::unique_ptr<PipelineModel> model_;
+  Backend backend_;
+  std::shared_ptr<RtlLibrary> library_;
+};
+
+// Method m's lighting in float (the vertex methods light by Phong).
+Vec3 shade_float(const Method& m, const Frame& f, const Fragment& fr, Vec3 n, Vec3 p) {
+  return shade(f, fr, n, p, m.spec != nullptr ? m.spec : lyon::phong);
+}
+
+// Per-pixel methods in float.
+Image pixel_float(const Method& m, const Frame& f) {
+  Image img = blank(f);
+  for (const Fragment& fr : f.fragments) {
+    img.at(fr.x, fr.y) = to_rgb8(shade_float(m, f, fr, normalized(fr.n), fr.p));
+  }
+  return img;
+}
+
+// Per-pixel methods through a Lyon unit: one transaction per pixel and light, with
+// N0 = N1 = the interpolated normal (not normalized: the unit's g-normalization does that) and
+// a = 0; V and L unit vectors; shininess n (arrangement 8: m = round(sqrt(n))).
+Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                 std::string_view what) {
+  const auto& lf = dynamic_cast<const LyonModel&>(unit.model()).formats();
+  const auto q = [](double x, fx::Format fmt) {
+    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  std::vector<std::int64_t> words;
+  const std::size_t nl = f.lighting.lights.size();
+  words.reserve(f.fragments.size() * nl * 14);
+  for (const Fragment& fr : f.fragments) {
+    const Vec3 v = f.lighting.v_at(fr.p);
+    const double shin =
+        lf.arrangement == 8 ? std::round(std::sqrt(fr.shininess)) : std::round(fr.shininess);
+    for (const Light& l : f.lighting.lights) {
+      const Vec3 ld = Lighting::l_at(l, fr.p);
+      for (int rep = 0; rep < 2; ++rep) {
+        words.insert(words.end(), {q(fr.n.x, lf.vec), q(fr.n.y, lf.vec), q(fr.n.z, lf.vec)});
+      }
+      words.push_back(0);
+      words.insert(words.end(), {q(v.x, lf.vec), q(v.y, lf.vec), q(v.z, lf.vec)});
+      words.insert(words.end(), {q(ld.x, lf.vec), q(ld.y, lf.vec), q(ld.z, lf.vec)});
+      words.push_back(q(shin, lf.shin));
+    }
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  if (out.size() != f.fragments.size() * nl * 2) {
+    throw Error(fmt::format("{}: the unit returned {} outputs for {} pixels", what, out.size() / 2,
+                            f.fragments.size() * nl));
+  }
+  Image img = blank(f);
+  std::vector<Amounts> a(nl);
+  for (std::size_t i = 0; i < f.fragments.size(); ++i) {
+    for (std::size_t k = 0; k < nl; ++k) {
+      a[k] = {fx::to_real(out[2 * (i * nl + k) + 1], lf.diff),
+              fx::to_real(out[2 * (i * nl + k)], lf.spec)};
+    }
+    const Fragment& fr = f.fragments[i];
+    img.at(fr.x, fr.y) = to_rgb8(combine(fr, f.lighting.lights, a));
+  }
+  return img;
+}
+
+// The lighting at the six sample points of triangle t, clamped to [0, 1]: the colours the
+// vertex methods interpolate.
+std::array<Vec3, 6> samples(const Frame& f, int t) {
+  const SamplePoints sp = sample_points(f, t);
+  const Fragment fr = material_fragment(f);
+  std::array<Vec3, 6> c;
+  for (int k = 0; k < 6; ++k) c[k] = clamp01(shade_float(phong(), f, fr, sp.n[k], sp.p[k]));
+  return c;
+}
+
+// Vertex methods (flat, Gouraud, subdivided Gouraud, quadratic) in float.
+// Each lighting evaluation is done once: flat per triangle, Gouraud per mesh vertex (shared
+// by its triangles, as a renderer lights vertices), the others per triangle's six samples.
+Image vertex_float(const Method& m, const Frame& f) {
+  const Fragment material = material_fragment(f);
+  std::vector<std::array<Vec3, 6>> cache(f.geometry.triangles.size());
+  std::vector<bool> done(cache.size());
+  std::vector<Vec3> vertex(f.geometry.positions.size());
+  std::vector<bool> vertex_done(vertex.size());
+  Image img = blank(f);
+  for (const Fragment& fr : f.fragments) {
+    const auto t = static_cast<std::size_t>(fr.tri);
+    const auto& idx = f.geometry.triangles[t];
+    if (m.kind == Kind::flat) {
+      if (!done[t]) {
+        const Vec3 a = f.geometry.positions[idx[0]], b = f.geometry.positions[idx[1]],
+                   c = f.geometry.positions[idx[2]];
+        const Vec3 n = normalized(cross(b - a, c - a));
+        cache[t][0] = shade_float(phong(), f, material, n, (a + b + c) * (1.0 / 3));
+        done[t] = true;
+      }
+      img.at(fr.x, fr.y) = to_rgb8(cache[t][0]);
+      continue;
+    }
+    const double s = fr.st.s, tt = fr.st.t;
+    if (m.kind == Kind::gouraud) {
+      for (const int i : idx) {
+        const auto k = static_cast<std::size_t>(i);
+        if (vertex_done[k]) continue;
+        vertex[k] = clamp01(shade_float(phong(), f, material, normalized(f.geometry.normals[k]),
+                                        f.geometry.positions[k]));
+        vertex_done[k] = true;
+      }
+      img.at(fr.x, fr.y) =
+          to_rgb8((1 - s - tt) * vertex[idx[0]] + s * vertex[idx[1]] + tt * vertex[idx[2]]);
+      continue;
+    }
+    if (!done[t]) {
+      cache[t] = samples(f, fr.tri);
+      done[t] = true;
+    }
+    const auto& c = cache[t];
+    Vec3 col;
+    if (m.kind == Kind::gouraud4) {
+      // Sub-triangles of the midpoint split, each interpolated linearly in (s, t).
+      if (s >= 0.5) {
+        // corner v1: vertices m01 (s=.5,t=0), v1 (1,0), m12 (.5,.5)
+        const double a = 2 * (s - 0.5), b = 2 * tt;
+        col = (1 - a - b) * c[1] + a * c[2] + b * c[3];
+      } else if (tt >= 0.5) {  // corner v2: m20 (0,.5), m12 (.5,.5), v2 (0,1)
+        const double a = 2 * s, b = 2 * (tt - 0.5);
+        col = (1 - a - b) * c[5] + a * c[3] + b * c[4];
+      } else if (s + tt <= 0.5) {  // corner v0: v0, m01, m20
+        const double a = 2 * s, b = 2 * tt;
+        col = (1 - a - b) * c[0] + a * c[1] + b * c[5];
+      } else {                                       // middle: m12 (.5,.5), m20 (0,.5), m01 (.5,0)
+        const double a = 1 - 2 * s, b = 1 - 2 * tt;  // weights of m20 and m01
+        col = (1 - a - b) * c[3] + a * c[5] + b * c[1];
+      }
+    } else {  // quadratic: eq. 4.1 per channel
+      quad::Samples r[3];
+      for (int k = 0; k < 6; ++k) {
+        for (int ch = 0; ch < 3; ++ch) r[ch][k] = channel(c[k], ch);
+      }
+      col = {quad::eval_st(quad::coefficients(r[0]), fr.st),
+             quad::eval_st(quad::coefficients(r[1]), fr.st),
+             quad::eval_st(quad::coefficients(r[2]), fr.st)};
+    }
+    img.at(fr.x, fr.y) = to_rgb8(col);
+  }
+  return img;
+}
+
+// Vertex methods through the quadratic unit: one program per triangle with a visible pixel
+// (linear configurations get the plane through the vertex colours); the unit's pixels are kept
+// where the triangle is the visible surface.
+Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgress& progress,
+                  std::string_view what) {
+  const QuadFormats qf = dynamic_cast<const QuadModel&>(unit.model()).formats();
+  if (qf.sub_bits != kSubBits) {
+    throw Error(fmt::format("{}: the renderer projects with {} subpixel bits; {} has {}", what,
+                            kSubBits, unit.config().origin(), qf.sub_bits));
+  }
+  // The framebuffer's 255 means 1.0, the unit's largest output (255/256 for 0.8) does: colours
+  // go in scaled by that top value, so the output's raw bits are the framebuffer value.
+  const double top = fx::to_real(qf.out.max_raw(), qf.out);
+  const std::vector<bool>& visible = f.visible;
+  std::vector<std::int64_t> words;
+  std::vector<int> tris;
+  std::vector<std::size_t> counts;
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    const auto c = samples(f, static_cast<int>(t));
+    std::array<quad::Coeffs, 3> colour;
+    for (int ch = 0; ch < 3; ++ch) {
+      quad::Samples r;
+      for (int k = 0; k < 6; ++k) r[k] = channel(c[k], ch) * top;
+      colour[ch] = m.kind == Kind::gouraud ? quad::linear_coefficients(r[0], r[2], r[4])
+                                           : quad::coefficients(r);
+    }
+    // Clipped to the image, so the unit emits exactly the triangle's coverage.
+    const auto w =
+        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height}));
+    words.insert(words.end(), w.begin(), w.end());
+    tris.push_back(static_cast<int>(t));
+    counts.push_back(f.coverage[t].size());
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  std::size_t expected = 0;
+  for (const std::size_t c : counts) expected += c;
+  if (out.size() != 5 * expected) {
+    throw Error(fmt::format("{}: the unit emitted {} pixels, coverage says {}", what,
+                            out.size() / 5, expected));
+  }
+  Image img = blank(f);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    for (std::size_t i = 0; i < counts[k]; ++i, at += 5) {
+      const auto x = static_cast<int>(out[at]);
+      const auto y = static_cast<int>(out[at + 1]);
+      if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
+      if (!f.shows(static_cast<std::size_t>(tris[k]), x, y)) continue;
+      const double full = static_cast<double>(qf.out.max_raw());
+      img.at(x, y) =
+          to_rgb8({static_cast<double>(out[at + 2]) / full, static_cast<double>(out[at + 3]) / full,
+                   static_cast<double>(out[at + 4]) / full});
+    }
+  }
+  return img;
+}
+
+// ---- Kuijk-Blake angular interpolation (seed 001, section 1.2) ----
+// Per span: N, the light direction L and the halfway vector H = (L + V)/|L + V| at the two end
+// pixels' centres; along the span N, L, H rotate at constant rates (t = 0 .. 1). Diffuse
+// cos α(N, L) and specular cos^n β(N, H) through the three-piece quadratic (n for the diffuse
+// term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's specfuns.m).
+
+kb::QuadParams kb_ab(double n) {
+  // Our least-squares table covers Kuijk-Blake's range n = 1..125; beyond, the closed forms.
+  const double r = std::max(1.0, std::round(n));
+  return r <= 125 ? kb_params(r, KbAbSource::least_squares) : kb::closed_form(r);
+}
+
+// One light along one span: the light and halfway directions at the two ends.
+struct KbLightEnds {
+  Vec3 l1, l2, h1, h2;
+};
+KbLightEnds kb_light_ends(const Frame& f, const Light& l, const Span& e) {
+  const Vec3 l1 = Lighting::l_at(l, e.s1.p), l2 = Lighting::l_at(l, e.s2.p);
+  return {l1, l2, normalized(l1 + f.lighting.v_at(e.s1.p)),
+          normalized(l2 + f.lighting.v_at(e.s2.p))};
+}
+
+// One light's diffuse (N, L) and specular (N, H) amounts along a span by the method's variant,
+// with the per-span work (the decompositions, the one-vector angles) done once.
+class KbLightTerms {
+ public:
+  KbLightTerms(Kind kind, const Span& e, const KbLightEnds& le, double shininess)
+      : kind_(kind),
+        n1_(e.n1),
+        n2_(e.n2),
+        le_(le),
+        ab1_(kb_ab(1)),
+        abn_(kb_ab(4 * shininess)),
+        n4_(4 * shininess) {
+    if (kind == Kind::kb_decompose) {
+      diff_d_ = kb::decompose(n1_, n2_, le.l1, le.l2);
+      spec_d_ = kb::decompose(n1_, n2_, le.h1, le.h2);
+    } else if (kind == Kind::kb_one_vector) {
+      diff_a_ = kb::one_vector(n1_, n2_, le.l1, le.l2);
+      spec_a_ = kb::one_vector(n1_, n2_, le.h1, le.h2);
+    }
+  }
+
+  [[nodiscard]] Amounts at(double t) const {
+    switch (kind_) {
+      case Kind::kb_exact:
+        return {exact(le_.l1, le_.l2, ab1_, t), exact(le_.h1, le_.h2, abn_, t)};
+      case Kind::kb_decompose:
+        return {decomposed(diff_d_, ab1_, t), decomposed(spec_d_, abn_, t)};
+      default:
+        return {one(diff_a_, ab1_, 1, t), one(spec_a_, abn_, n4_, t)};
+    }
+  }
+
+ private:
+  [[nodiscard]] double exact(Vec3 v1, Vec3 v2, const kb::QuadParams& ab, double t) const {
+    return kb::quad(std::acos(std::clamp(kb::cos_exact(n1_, n2_, v1, v2, t), -1.0, 1.0)), ab);
+  }
+  static double decomposed(const kb::Decomposition& d, const kb::QuadParams& ab, double t) {
+    return kb::quad(d.n.theta0 + t * d.n.dtheta, ab) * kb::quad(d.l.theta0 + t * d.l.dtheta, ab);
+  }
+  static double one(const kb::ScanlineAngles& a, const kb::QuadParams& ab, double n, double t) {
+    return std::pow(std::max(a.scale, 0.0), n) * kb::quad(a.theta0 + t * a.dtheta, ab);
+  }
+
+  Kind kind_;
+  Vec3 n1_, n2_;
+  KbLightEnds le_;
+  kb::QuadParams ab1_, abn_;
+  double n4_;
+  kb::Decomposition diff_d_, spec_d_;
+  kb::ScanlineAngles diff_a_, spec_a_;
+};
+
+// Kuijk-Blake methods in float.
+Image kb_float(const Method& m, const Frame& f) {
+  const std::vector<bool>& visible = f.visible;
+  Image img = blank(f);
+  std::vector<Amounts> a(f.lighting.lights.size());
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    for (const Span& e : spans_of(f, t)) {
+      std::vector<KbLightTerms> terms;
+      for (const Light& l : f.lighting.lights) {
+        terms.emplace_back(m.kind, e, kb_light_ends(f, l, e), f.material.shininess);
+      }
+      for (int x = e.x0; x <= e.x1; ++x) {
+        const int o = f.owner[static_cast<std::size_t>(e.y) * f.width + x];
+        if (o < 0 || f.fragments[static_cast<std::size_t>(o)].tri != static_cast<int>(t)) continue;
+        const double u = e.x1 == e.x0 ? 0.0 : static_cast<double>(x - e.x0) / (e.x1 - e.x0);
+        for (std::size_t k = 0; k < a.size(); ++k) a[k] = terms[k].at(u);
+        img.at(x, e.y) =
+            to_rgb8(combine(f.fragments[static_cast<std::size_t>(o)], f.lighting.lights, a));
+      }
+    }
+  }
+  return img;
+}
+
+// The one-vector method through the Kuijk-Blake engine: per span and colour channel one program
+// whose terms are the ambient (a constant: angle 0, rate 0), and per light the diffuse and the
+// specular one-vector terms scaled by the light's and the material's colour. The channel values
+// are scaled by the output's top value, like the quadratic unit's (vertex_unit).
+Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::string_view what) {
+  const KbFormats kf = dynamic_cast<const KbModel&>(unit.model()).formats();
+  const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
+  const double top = fx::to_real(kf.out.max_raw(), kf.out);
+  const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * f.material.shininess);
+  const std::vector<bool>& visible = f.visible;
+  std::vector<std::int64_t> words;
+  struct Placed {
+    int tri, y, x0, x1;
+  };
+  std::vector<Placed> placed;
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    for (const Span& e : spans_of(f, t)) {
+      const int length = e.x1 - e.x0 + 1;
+      const double per_pixel = length == 1 ? 0.0 : 1.0 / (length - 1);
+      // Per light: the diffuse and specular one-vector angles (the same for every channel).
+      std::vector<std::pair<kb::ScanlineAngles, kb::ScanlineAngles>> angles;
+      for (const Light& l : f.lighting.lights) {
+        const KbLightEnds le = kb_light_ends(f, l, e);
+        angles.emplace_back(kb::one_vector(e.n1, e.n2, le.l1, le.l2),
+                            kb::one_vector(e.n1, e.n2, le.h1, le.h2));
+      }
+      for (int ch = 0; ch < 3; ++ch) {
+        KbSpan span;
+        span.length = length;
+        span.terms.push_back({0, 0, ab1, channel(f.material.ambient, ch) * top});
+        for (std::size_t k = 0; k < angles.size(); ++k) {
+          const Light& l = f.lighting.lights[k];
+          const auto& [d, s] = angles[k];
+          const double lc = channel(l.colour, ch) * top;
+          span.terms.push_back({d.theta0, d.dtheta * per_pixel, ab1,
+                                lc * channel(f.material.diffuse, ch) * std::max(d.scale, 0.0)});
+          span.terms.push_back({s.theta0, s.dtheta * per_pixel, abn,
+                                lc * channel(f.material.specular, ch) *
+                                    std::pow(std::max(s.scale, 0.0), 4 * f.material.shininess)});
+        }
+        for (const auto& w : kb_program(span, so.policy, kf))
+          words.insert(words.end(), w.begin(), w.end());
+      }
+      placed.push_back({static_cast<int>(t), e.y, e.x0, e.x1});
+    }
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  std::size_t expected = 0;
+  for (const Placed& p : placed) expected += 3 * static_cast<std::size_t>(p.x1 - p.x0 + 1);
+  if (out.size() != 2 * expected) {
+    throw Error(fmt::format("{}: the engine emitted {} pixels, the spans have {}", what,
+                            out.size() / 2, expected));
+  }
+  Image img = blank(f);
+  const double full = static_cast<double>(kf.out.max_raw());
+  std::size_t at = 0;
+  for (const Placed& p : placed) {
+    const std::size_t length = static_cast<std::size_t>(p.x1 - p.x0 + 1);
+    for (std::size_t i = 0; i < length; ++i) {
+      const int x = p.x0 + static_cast<int>(i);
+      if (!f.shows(static_cast<std::size_t>(p.tri), x, p.y)) continue;
+      const auto value = [&](int ch) {
+        return static_cast<double>(out[at + 2 * (static_cast<std::size_t>(ch) * length + i)]) /
+               full;
+      };
+      img.at(x, p.y) = to_rgb8({value(0), value(1), value(2)});
+    }
+    at += 2 * 3 * length;
+  }
+  return img;
+}
+
+Backend resolve(const Method& m, Backend asked) {
+  if (asked == Backend::automatic) return m.info.config.empty() ? Backend::float_ref : Backend::rtl;
+  if (asked != Backend::float_ref && m.info.config.empty()) {
+    throw Error(
+        fmt::format("method '{}' has no hardware unit: --backend {} is not available "
+                    "(use float or auto)",
+                    m.info.name, backend_name(asked)));
+  }
+  return asked;
+}
+
+std::vector<bool> mask_of(const Frame& f) {
+  std::vector<bool> mask(f.owner.size());
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = f.owner[i] >= 0;
+  return mask;
+}
+
+}  // namespace
+
+std::string_view backend_name(Backend b) {
+  switch (b) {
+    case Backend::automatic:
+      return "auto";
+    case Backend::float_ref:
+      return "float";
+    case Backend::model:
+      return "model";
+    case Backend::rtl:
+      return "rtl";
+  }
+  return "?";
+}
+
+Backend parse_backend(std::string_view name) {
+  for (const Backend b : {Backend::automatic, Backend::float_ref, Backend::model, Backend::rtl}) {
+    if (backend_name(b) == name) return b;
+  }
+  throw Error(fmt::format("unknown backend '{}' (known: auto, float, model, rtl)", name));
+}
+
+std::string_view terms_name(Terms t) { return t == Terms::all ? "all" : "specular"; }
+
+Terms parse_terms(std::string_view name) {
+  for (const Terms t : {Terms::all, Terms::specular}) {
+    if (terms_name(t) == name) return t;
+  }
+  throw Error(fmt::format("unknown terms '{}' (known: all, specular)", name));
+}
+
+const std::vector<MethodInfo>& render_methods() {
+  static const std::vector<MethodInfo> infos = [] {
+    std::vector<MethodInfo> v;
+    for (const Method& m : methods()) v.push_back(m.info);
+    return v;
+  }();
+  return infos;
+}
+
+const MethodInfo& find_method(std::string_view name) { return method(name).info; }
+
+RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
+  // Validate before any work.
+  const bool analytic = o.scene == kShinyballs;
+  if (o.size < 0 || o.size > 2048) {
+    throw Error(fmt::format("--size {} is out of range (1..2048)", o.size));
+  }
+  if (analytic && o.size > 340) {
+    throw Error(
+        fmt::format("--size {}: shinyballs is 6 radii wide, at most 340 pixels of radius "
+                    "fit the 2048-pixel screen",
+                    o.size));
+  }
+  if (o.texture_size < 0 || o.texture_size > texmap::kMaxTextureSize) {
+    throw Error(fmt::format("--texture-size {} is out of range (0..{}; 0: the exact texture)",
+                            o.texture_size, texmap::kMaxTextureSize));
+  }
+  if (o.repeats < 1 || o.repeats > 1000) {
+    throw Error(fmt::format("repeats {} is out of range (1..1000)", o.repeats));
+  }
+  std::vector<std::string> names =
+      o.methods.empty() ? (analytic ? kShinyballsMethods : kMeshMethods) : o.methods;
+  if (names.size() > 1 && std::find(names.begin(), names.end(), "all") != names.end()) {
+    throw Error("--method all stands for every method: give it alone");
+  }
+  if (names.size() == 1 && names.front() == "all") {
+    // Every method the scene and the backend can use.
+    names.clear();
+    for (const Method& m : methods()) {
+      if ((analytic && m.info.mesh_only) ||
+          (o.backend != Backend::automatic && o.backend != Backend::float_ref &&
+           m.info.config.empty())) {
+        continue;
+      }
+      names.emplace_back(m.info.name);
+    }
+  }
+  const std::string ref_name = o.reference.empty() ? "phong" : o.reference;
+  const Method& ref = method(ref_name);
+  std::vector<const Method*> chosen;
+  std::vector<Backend> backends;
+  for (const std::string& n : names) {
+    const Method& m = method(n);
+    if (analytic && m.info.mesh_only) {
+      throw Error(
+          fmt::format("method '{}' interpolates over triangles; scene '{}' has none "
+                      "(use a mesh scene)",
+                      n, o.scene));
+    }
+    chosen.push_back(&m);
+    backends.push_back(resolve(m, o.backend));
+  }
+  if (analytic && ref.info.mesh_only) {
+    throw Error(fmt::format("reference '{}' needs a mesh scene", ref_name));
+  }
+  // Units (loading them finds or builds the plugins before rendering starts). A method's unit
+  // is its built-in configuration, or options.unit_config when that is of the same pipeline.
+  std::string override_pipeline;
+  if (!o.unit_config.empty()) override_pipeline = Config::load(o.unit_config).pipeline();
+  const auto unit_path = [&](const Method& m) {
+    const fs::path built_in = data_root() / "configs" / (std::string(m.info.config) + ".toml");
+    const bool replace = !override_pipeline.empty() &&
+                         fs::path(std::string(m.info.config)).parent_path() == override_pipeline;
+    return (replace ? fs::path(o.unit_config) : built_in).string();
+  };
+  std::map<std::pair<std::string, Backend>, std::unique_ptr<Unit>> units;
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    if (backends[i] == Backend::float_ref) continue;
+    auto key = std::make_pair(unit_path(*chosen[i]), backends[i]);
+    if (!units.contains(key)) {
+      units[key] = std::make_unique<Unit>(key.first, backends[i], o.no_build);
+    }
+  }
+  Frame f = analytic ? shinyballs(o.size == 0 ? 64 : o.size)
+                     : mesh_frame(fs::path(o.scene).extension() == ".toml"
+                                      ? load_scene(o.scene)
+                                      : builtin_scene(o.scene, o.teapot_resolution),
+                                  o.size);
+  if (o.terms == Terms::specular) {
+    f.material.ambient = f.material.diffuse = {};
+    for (Fragment& fr : f.fragments) fr.ka = fr.kd = {};
+  }
+  const TextureOptions texture{o.texture_size, o.texture_filter};
+
+  if (o.scanline >= f.height) {
+    throw Error(
+        fmt::format("--scanline {} is outside the image (0..{})", o.scanline, f.height - 1));
+  }
+
+  const auto float_image = [&](const Method& m) {
+    switch (m.kind) {
+      case Kind::pixel:
+        return pixel_float(m, f);
+      case Kind::kb_exact:
+      case Kind::kb_decompose:
+      case Kind::kb_one_vector:
+        return kb_float(m, f);
+      case Kind::env_map:
+        return texture_image(TextureMethod::env_map, f, texture);
+      case Kind::blinn_map:
+        return texture_image(TextureMethod::blinn_map, f, texture);
+      case Kind::quad_blinn_map:
+        return texture_image(TextureMethod::quad_blinn_map, f, texture);
+      case Kind::fast_phong:
+        return fast_phong_image(f);
+      case Kind::fence:
+      case Kind::highlight_track:
+        return fence_image(f, m.kind == Kind::highlight_track);
+      default:
+        return vertex_float(m, f);
+    }
+  };
+  const auto unit_image = [&](const Method& m, Backend b, std::string_view what) {
+    Unit& unit = *units.at({unit_path(m), b});
+    switch (m.kind) {
+      case Kind::pixel:
+        return pixel_unit(f, unit, progress, what);
+      case Kind::kb_one_vector:
+        return kb_unit(f, unit, progress, what);
+      default:
+        return vertex_unit(m, f, unit, progress, what);
+    }
+  };
+  // One shading pass, timed (wall clock and the process's CPU time).
+  const auto render_once = [&](const Method& m, Backend b, MethodResult& r) {
+    const std::string what = fmt::format("{} [{}]", m.info.name, backend_name(b));
+    progress(what, 0, f.fragments.size());
+    const std::clock_t cpu = std::clock();
+    const auto start = std::chrono::steady_clock::now();
+    r.image = b == Backend::float_ref ? float_image(m) : unit_image(m, b, what);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.cpu_seconds = static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC;
+    progress(what, f.fragments.size(), f.fragments.size());
+  };
+
+  RenderResult result;
+  result.scene = f.scene;
+  result.mask = mask_of(f);
+  result.regions = f.regions;
+  result.scanline = o.scanline < 0 ? f.height / 2 : o.scanline;
+  if (o.terms == Terms::specular) result.settings = ", specular term only";
+  for (const Method* m : chosen) {
+    if (m->kind == Kind::env_map || m->kind == Kind::blinn_map || m->kind == Kind::quad_blinn_map) {
+      result.settings += o.texture_size == 0
+                             ? std::string(", exact textures")
+                             : fmt::format(", textures {} x {} {}", o.texture_size, o.texture_size,
+                                           texmap::filter_name(o.texture_filter));
+      break;
+    }
+  }
+  // Round by round every method once (the reference first), so that a drift of the machine's
+  // speed during the run affects all methods alike; the medians are kept.
+  std::vector<const Method*> all{&ref};
+  std::vector<Backend> all_backends{Backend::float_ref};
+  all.insert(all.end(), chosen.begin(), chosen.end());
+  all_backends.insert(all_backends.end(), backends.begin(), backends.end());
+  std::vector<MethodResult> rendered(all.size());
+  std::vector<std::vector<double>> wall(all.size()), cpu(all.size());
+  for (int round = 0; round < o.repeats; ++round) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      MethodResult& r = rendered[i];
+      r.method = std::string(all[i]->info.name);
+      r.backend = all_backends[i];
+      render_once(*all[i], all_backends[i], r);
+      wall[i].push_back(r.seconds);
+      cpu[i].push_back(r.cpu_seconds);
+    }
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t h = v.size() / 2;
+    return v.size() % 2 == 1 ? v[h] : (v[h - 1] + v[h]) / 2;
+  };
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    rendered[i].seconds = median(wall[i]);
+    rendered[i].cpu_seconds = median(cpu[i]);
+  }
+  result.reference = std::move(rendered.front());
+  result.reference.metrics = compare(result.reference.image, result.reference.image, result.mask);
+  for (std::size_t i = 1; i < rendered.size(); ++i) {
+    MethodResult& r = rendered[i];
+    r.metrics = compare(result.reference.image, r.image, result.mask);
+    for (const auto& region : result.regions) {
+      r.region_metrics.push_back(compare(result.reference.image, r.image, region.second));
+    }
+    result.results.push_back(std::move(r));
+  }
+  return result;
+}
+
+std::string metrics_markdown(const RenderResult& r) {
+  std::string s =
+      "| method | backend | colour correctness (eq. 6.1) | PSNR (dB) | max error | pixels |";
+  std::string rule = "|---|---|---|---|---|---|";
+  for (const auto& region : r.regions) {
+    s += fmt::format(" cc {} |", region.first);
+    rule += "---|";
+  }
+  s += "\n" + rule + "\n";
+  for (const MethodResult& m : r.results) {
+    s += fmt::format(
+        "| {} | {} | {:.4f} | {} | {} | {} |", m.method, backend_name(m.backend),
+        m.metrics.colour_correctness,
+        std::isinf(m.metrics.psnr) ? std::string("inf") : fmt::format("{:.2f}", m.metrics.psnr),
+        m.metrics.max_error, m.metrics.pixels);
+    for (const ImageMetrics& rm : m.region_metrics)
+      s += fmt::format(" {:.4f} |", rm.colour_correctness);
+    s += "\n";
+  }
+  return s;
+}
+
+std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path& dir) {
+  const int row = r.scanline;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("cannot create {}: {}", dir.string(), ec.message()));
+  { OutputFile probe(dir / ".phongsim-write-test"); }  // unwritable: fail before any output
+
+  std::vector<fs::path> written;
+  const auto path = [&](std::string_view suffix) {
+    return dir / fmt::format("{}_{}", r.scene, suffix);
+  };
+  std::vector<std::vector<Image>> cells;
+  std::vector<std::string> labels;
+  std::vector<Curve> curves{
+      {r.reference.method + " (reference)", illumination_row(r.reference.image, row)}};
+  for (const MethodResult& m : r.results) {
+    const Image diff = difference_image(r.reference.image, m.image);
+    write_png(m.image, path(m.method + ".png"));
+    write_png(diff, path(m.method + "_diff.png"));
+    written.push_back(path(m.method + ".png"));
+    written.push_back(path(m.method + "_diff.png"));
+    cells.push_back({m.image, diff});
+    labels.push_back(fmt::format("{} [{}]", m.method, backend_name(m.backend)));
+    curves.push_back({labels.back(), illumination_row(m.image, row)});
+  }
+  const Image g = grid(cells, labels,
+                       {"image", fmt::format("difference from {} (eq. 6.2)", r.reference.method)},
+                       fmt::format("{}", r.scene));
+  write_png(g, path("grid.png"));
+  written.push_back(path("grid.png"));
+  write_png(
+      plot_curves(curves, fmt::format("{}: illumination along row {} (eq. 6.3)", r.scene, row)),
+      path("scanline.png"));
+  written.push_back(path("scanline.png"));
+
+  OutputFile csv(path("metrics.csv"));
+  std::string text =
+      "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds,cpu_seconds\n";
+  for (const MethodResult& m : r.results) {
+    text += fmt::format("{},{},{:.6f},{:.4f},{},{},{:.6f},{:.6f}\n", m.method,
+                        backend_name(m.backend), m.metrics.colour_correctness, m.metrics.psnr,
+                        m.metrics.max_error, m.metrics.pixels, m.seconds, m.cpu_seconds);
+  }
+  std::fputs(text.c_str(), csv.get());
+  csv.commit();
+  written.push_back(path("metrics.csv"));
+  OutputFile md(path("metrics.md"));
+  std::fputs(fmt::format("Scene {}, reference {} (float){}\n\n{}", r.scene, r.reference.method,
+                         r.settings, metrics_markdown(r))
+                 .c_str(),
+             md.get());
+  md.commit();
+  written.push_back(path("metrics.md"));
+  return written;
+}
+
+}  // namespace phongsim

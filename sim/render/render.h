@@ -1,0 +1,103 @@
+// `phongsim render`: shades a scene with one or more methods, each through a backend — the
+// float reference, the bit-accurate model or the Verilated RTL of a configuration — and
+// compares the images with a reference method (Vlasic's comparison methods, eqs. 6.1-6.3).
+// docs/render.md describes the scenes, methods and outputs.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ref/texture_maps.h"
+#include "sim/render/image.h"
+
+namespace phongsim {
+
+enum class Backend { automatic, float_ref, model, rtl };
+
+[[nodiscard]] std::string_view backend_name(Backend b);
+[[nodiscard]] Backend parse_backend(std::string_view name);  // auto|float|model|rtl; Error else
+
+// Which terms of the lighting model every method (and the reference) renders: all, or only the
+// specular one (ambient and diffuse reflectances zeroed), as Vlasic compares his methods
+// (Figures 6.1c-d, Table 6.1).
+enum class Terms { all, specular };
+[[nodiscard]] std::string_view terms_name(Terms t);
+[[nodiscard]] Terms parse_terms(std::string_view name);  // all|specular; Error else
+
+// One shading method (a row of the comparison grid).
+struct MethodInfo {
+  std::string_view name;
+  std::string_view description;
+  std::string_view config;  // configs/<config>.toml of its hardware unit; empty: float only
+  bool mesh_only = false;   // needs triangles (not the analytic shinyballs scene)
+};
+[[nodiscard]] const std::vector<MethodInfo>& render_methods();
+[[nodiscard]] const MethodInfo& find_method(std::string_view name);  // Error lists the names
+
+struct RenderOptions {
+  std::string scene = "shinyballs";  // a built-in scene name or a scene file (.toml)
+  std::vector<std::string> methods;  // empty: the scene's default list; "all": every method the
+                                     // scene can use
+  Backend backend = Backend::automatic;
+  int size = 0;               // shinyballs: sphere radius in pixels (default 64); meshes: width
+  int teapot_resolution = 0;  // 0: default
+  std::string reference;      // empty: "phong"
+  bool no_build = false;      // never Verilate: fail when a plugin is missing
+  int scanline = -1;          // row of the scanline plot; -1: the middle
+  // A configuration file that replaces the built-in one of every unit method of its pipeline
+  // (width exploration renders scenes through candidate configurations).
+  std::string unit_config;
+  Terms terms = Terms::all;
+  // The texture methods' textures (docs/methods.md): texels per side (0: the exact texture
+  // function, no sampling) and filtering.
+  int texture_size = 256;
+  texmap::Filter texture_filter = texmap::Filter::bilinear;
+  // Each method (the reference too) is rendered this many times, in interleaved rounds; its
+  // times are the medians (`phongsim bench methods`). The images are the same every round.
+  int repeats = 1;
+};
+
+struct MethodResult {
+  std::string method;
+  Backend backend = Backend::float_ref;  // the one actually used
+  Image image;
+  ImageMetrics metrics;                      // against the reference image over the object's pixels
+  std::vector<ImageMetrics> region_metrics;  // the same per RenderResult::regions
+  double seconds = 0;      // wall-clock time of the shading pass (median over the repeats)
+  double cpu_seconds = 0;  // the process's CPU time for it (median over the repeats)
+};
+
+struct RenderResult {
+  std::string scene;
+  std::vector<MethodResult> results;  // in the order asked for
+  MethodResult reference;             // float reference image (metrics: against itself)
+  std::vector<bool> mask;             // object (non-background) pixels, row-major
+  // Named parts of the object (shinyballs: each sphere's visible pixels, "n=1" ... "n=256").
+  std::vector<std::pair<std::string, std::vector<bool>>> regions;
+  int scanline = 0;  // default row of the scanline plot
+  // What the images depend on besides scene and methods: "" or ", specular term only", and the
+  // textures' size and filter when a texture method was rendered.
+  std::string settings;
+};
+
+// Progress: (what, done, total) — called often; the CLI throttles its display.
+using RenderProgress = std::function<void(std::string_view, std::uint64_t, std::uint64_t)>;
+
+// Validates everything first (scene, methods, backends, configurations, plugins), then renders.
+// Throws Error with one line naming the problem.
+[[nodiscard]] RenderResult render(const RenderOptions& options, const RenderProgress& progress);
+
+// Writes into `dir`: <scene>_<method>.png per method, <scene>_grid.png (labelled rows),
+// <scene>_<method>_diff.png (eq. 6.2, against the reference), <scene>_scanline.png (eq. 6.3 for
+// the result's scanline), <scene>_metrics.csv and .md. Returns the paths.
+std::vector<std::filesystem::path> write_render_outputs(const RenderResult& r,
+                                                        const std::filesystem::path& dir);
+
+// The metrics table (Markdown) printed by the CLI and written to <scene>_metrics.md.
+[[nodiscard]] std::string metrics_markdown(const RenderResult& r);
+
+}  // namespace phongsim
