@@ -1,4 +1,4 @@
-// Minimal double-precision 3-vector for the float reference models (model/lyon_float.*) and
+// Minimal double-precision 3-vector for the float reference models (ref/lyon_float.*) and
 // the renderer. Deliberately plain: a value type, element-wise + and -, scaling, dot and cross
 // products.
 #pragma once

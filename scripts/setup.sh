@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build   # C++20 toolchain and build
   verilator zlib1g-dev                # RTL simulation (zlib for FST waveforms)
   libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
-  python3                             # 3.11: tomllib turns configs into -G parameters
+  python3                             # tests/gen_fx_cosim.py writes a test top at configure time
   yosys                               # synthesis checks (no latches) of every RTL top
   nextpnr-ice40                       # iCE40 place and route: fmax of a configuration (sim/explore/synth.h)
   clang-format                        # style check in the test suite

@@ -49,7 +49,7 @@ EOT
 
 case "$case_name" in
   help)
-    for sub in "" cosim eval build-rtl bench list render sweep; do
+    for sub in "" cosim eval build-rtl lint synth bench list render sweep vectors analyze; do
       $phongsim $sub --help >"$tmp/help" 2>&1 || fail "phongsim $sub --help failed"
       grep -q -i "usage" "$tmp/help" || fail "phongsim $sub --help prints no usage"
     done
@@ -197,10 +197,11 @@ EOT
     ;;
 
   on-demand)
-    # A configuration that is not built in: Verilated into the cache on first use, then reused.
+    # A configuration nobody built yet: refused under --no-build, Verilated into the cache on
+    # first use, then reused.
     export PHONGSIM_CACHE="$tmp/cache"
     write_config "$tmp/mine.toml" S1.9 1.9 S1.8
-    expect_error "is not built yet; build it with: phongsim build-rtl --pipeline lirp --config $tmp/mine.toml" \
+    expect_error "the RTL of lirp is not built for its current content and parameters \(first build of these parameters\)" \
       "$phongsim" cosim --config "$tmp/mine.toml" --no-build --vectors 10
     "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --backpressure random:0.3 \
       >"$tmp/first" 2>&1 || fail "first run failed: $(cat "$tmp/first")"
@@ -208,11 +209,38 @@ EOT
     "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --no-build >"$tmp/second" 2>&1 \
       || fail "second run failed: $(cat "$tmp/second")"
     ! grep -q "Verilating" "$tmp/second" || fail "second run rebuilt"
-    grep -q "^PASS lirp/mine" "$tmp/second" || fail "second run: $(cat "$tmp/second")"
-    # A copy of a built-in configuration (other file, same parameters) needs no build at all.
+    grep -q "^PASS lirp/mine: .*; RTL: built-in lirp_unit" "$tmp/second" || fail "second run: $(cat "$tmp/second")"
+    unset PHONGSIM_CACHE
+    # A copy of a built-in configuration (other file, same parameters) is the same design: the
+    # build's cache has it.
     cp "$default" "$tmp/copy.toml"
     "$phongsim" build-rtl --config "$tmp/copy.toml" >"$tmp/copy" 2>&1 || fail "$(cat "$tmp/copy")"
-    grep -q "(built in)" "$tmp/copy" || fail "copy of default was not found built in: $(cat "$tmp/copy")"
+    grep -q "(cached)" "$tmp/copy" || fail "copy of default was not found cached: $(cat "$tmp/copy")"
+    ;;
+
+  stale)
+    # Editing any RTL file never reports the old result: a copy of rtl/ passed with --rtl is
+    # built once; after an edit, --no-build refuses (naming the file) and a normal run rebuilds.
+    export PHONGSIM_CACHE="$tmp/cache"
+    cp -r "$src/rtl" "$tmp/rtl"
+    run() { "$phongsim" cosim lirp --rtl "$tmp/rtl/common" "$tmp/rtl/lirp" --vectors 2000 "$@"; }
+    run >"$tmp/first" 2>&1 || fail "first run: $(cat "$tmp/first")"
+    grep -qE "^PASS lirp/default: .*; RTL: lirp_unit from --rtl, [0-9]+ files" "$tmp/first" ||
+      fail "first run: $(cat "$tmp/first")"
+    run --no-build >"$tmp/again" 2>&1 || fail "unchanged RTL was not found built: $(cat "$tmp/again")"
+    echo "// an edit" >>"$tmp/rtl/common/fx_resize.sv"
+    expect_error "not built for its current content.*changed since the last build: fx_resize.sv" \
+      run --no-build
+    run >"$tmp/rebuilt" 2>&1 || fail "rebuild: $(cat "$tmp/rebuilt")"
+    grep -q "Verilating lirp (changed since the last build: fx_resize.sv" "$tmp/rebuilt" ||
+      fail "no rebuild notice: $(cat "$tmp/rebuilt")"
+    # A plugin file given by hand is refused once a file it was built from changed.
+    plugin=$("$phongsim" build-rtl lirp --rtl "$tmp/rtl/common" "$tmp/rtl/lirp" | sed -n 's/.*: \(.*plugin.so\)$/\1/p')
+    [ -s "$plugin" ] || fail "build-rtl printed no plugin path"
+    "$phongsim" cosim lirp --rtl-plugin "$plugin" --vectors 100 >"$tmp/p" 2>&1 || fail "plugin: $(cat "$tmp/p")"
+    echo "// another edit" >>"$tmp/rtl/lirp/lirp_core.sv"
+    expect_error "was built from an older .*lirp_core.sv" \
+      "$phongsim" cosim lirp --rtl-plugin "$plugin" --vectors 100
     ;;
 
   render)

@@ -8,10 +8,20 @@ of out_o, zero-extended; the test sweeps a_i (and b_i) over every value. Result 
 to fx_pkg in the RTL, so the test also checks that the RTL's width growth matches the model's.
 """
 import os
+import re
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
-from config_gflags import MODES, format_word  # noqa: E402  (the one format-word encoding)
+# fx_pkg.sv's encodings (model/config.cpp's Config::rtl_parameters() uses the same ones).
+MODES = {"truncate": 0, "half_up": 1, "half_even": 2, "wrap": 0, "saturate": 1}
+
+
+def format_word(text):
+    """fx_pkg format word of "S1.10" / "1.10": signed * 65536 + int_bits * 256 + frac_bits."""
+    m = re.fullmatch(r"([Ss]?)(\d+)\.(\d+)", text)
+    if not m:
+        raise ValueError(f"'{text}' is not a fixed-point format")
+    return (65536 if m.group(1) else 0) + int(m.group(2)) * 256 + int(m.group(3))
+
 
 ROUNDS = ["truncate", "half_up", "half_even"]
 OVERFLOWS = ["wrap", "saturate"]

@@ -27,7 +27,7 @@
 #include "sim/cosim/cosim.h"
 #include "sim/cosim/harness.h"
 #include "sim/cosim/rtl_dut.h"
-#include "sim/cosim/rtl_library.h"
+#include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stall.h"
 #include "sim/pipelines/registry.h"
 

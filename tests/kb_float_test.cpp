@@ -1,4 +1,4 @@
-// Tests for the double-precision Kuijk–Blake reference (model/kb_float.*), seed 001 with the
+// Tests for the double-precision Kuijk–Blake reference (ref/kb_float.*), seed 001 with the
 // errata of SEED-NOTES.md. Equation numbers are the report's: (1) exact angle along a scanline,
 // (2) decomposition method, (4) one-vector method; f is the three-piece quadratic of section 2.
 //

@@ -8,8 +8,7 @@
 #include "model/config.h"
 #include "model/kb.h"
 #include "model/kb_setup.h"
-#include "sim/pipelines/kb_analysis.h"
-#include "sim/pipelines/kb_stimulus.h"
+#include "sim/pipelines/kb.h"
 #include "sim/pipelines/registry.h"
 
 namespace phongsim {

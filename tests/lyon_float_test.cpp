@@ -1,4 +1,4 @@
-// Tests for the double-precision Lyon TR #43 reference (model/lyon_float.*).
+// Tests for the double-precision Lyon TR #43 reference (ref/lyon_float.*).
 //
 // Expected values are derived by hand in the comments from the report (seed 002) and
 // specfuns.m, never copied from the implementation's output. Tolerances: unless a test says

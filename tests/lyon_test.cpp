@@ -8,8 +8,7 @@
 #include "base/error.h"
 #include "model/config.h"
 #include "model/lyon.h"
-#include "sim/pipelines/lyon_analysis.h"
-#include "sim/pipelines/lyon_stimulus.h"
+#include "sim/pipelines/lyon.h"
 #include "sim/pipelines/registry.h"
 
 namespace phongsim {

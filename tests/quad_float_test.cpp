@@ -1,4 +1,4 @@
-// Tests for the quadratic-shading reference (model/quad_float.*): Vlasic, "Fake Phong Shading"
+// Tests for the quadratic-shading reference (ref/quad_float.*): Vlasic, "Fake Phong Shading"
 // (seed 000) eqs. 3.5, 3.6-3.11 and 4.1-4.3 with the sample order of SEED-NOTES.md, and the exact
 // top-left coverage rule shared with the hardware setup.
 //

@@ -11,9 +11,8 @@
 #include "model/quad.h"
 #include "model/quad_setup.h"
 #include "sim/cosim/harness.h"
-#include "sim/cosim/rtl_library.h"
-#include "sim/pipelines/quad_analysis.h"
-#include "sim/pipelines/quad_stimulus.h"
+#include "sim/cosim/rtl_plugin.h"
+#include "sim/pipelines/quad.h"
 #include "sim/pipelines/registry.h"
 
 namespace phongsim {
@@ -176,8 +175,9 @@ TEST(QuadRtl, CycleCostIsOnePerRowPlusOnePerPixel) {
   const Config cfg = Config::load(std::string(PHONGSIM_SOURCE_DIR) + "/configs/quad/default.toml");
   const auto model = make_model(find_pipeline("quad"), cfg);
   const auto& qm = dynamic_cast<const QuadModel&>(*model);
-  const RtlPlugin plugin = locate_rtl(cfg, RtlBuild::never, stderr);
-  auto dut = RtlLibrary::open(plugin.path, plugin.gflags)->create(*model);
+  const RtlPlugin plugin =
+      locate_rtl(rtl_design(find_pipeline("quad"), cfg), *model, RtlBuild::never, stderr);
+  auto dut = RtlLibrary::open(plugin)->create(*model);
   std::vector<std::int64_t> words;
   std::uint64_t rows = 0;
   std::uint64_t pixels = 0;

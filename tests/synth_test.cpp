@@ -14,6 +14,7 @@
 #include "base/error.h"
 #include "model/config.h"
 #include "sim/explore/synth.h"
+#include "sim/pipelines/registry.h"
 #include "tests/error_of.h"
 
 namespace {
@@ -59,13 +60,19 @@ class SynthTest : public ::testing::Test {
   fs::path dir_;
 };
 
+// Synthesis of a configuration's built-in design.
+SynthResult Synthesize(const Config& cfg, const SynthOptions& options, std::FILE* log) {
+  return synthesize(phongsim::rtl_design(phongsim::find_pipeline(cfg.pipeline()), cfg),
+                    cfg.origin(), options, log);
+}
+
 Config Lirp(const std::string& name) {
   return Config::load(kSourceDir / "configs" / "lirp" / (name + ".toml"));
 }
 
 TEST_F(SynthTest, LirpGenericAndIce40AreCachedByContent) {
   const SynthOptions both{.generic = true, .ice40 = true};
-  const SynthResult r = synthesize(Lirp("default"), both, stderr);
+  const SynthResult r = Synthesize(Lirp("default"), both, stderr);
   EXPECT_FALSE(r.cached);
   EXPECT_GT(r.cells, 0);
   EXPECT_GT(r.transistors, r.cells);
@@ -90,7 +97,7 @@ TEST_F(SynthTest, LirpGenericAndIce40AreCachedByContent) {
   // Same content under another name: from the cache, without running the tools.
   const fs::path copy =
       Write("renamed.toml", ReadFile(kSourceDir / "configs" / "lirp" / "default.toml"));
-  const SynthResult again = synthesize(Config::load(copy), both, nullptr);
+  const SynthResult again = Synthesize(Config::load(copy), both, nullptr);
   EXPECT_TRUE(again.cached);
   EXPECT_EQ(again.key, r.key);
   EXPECT_EQ(again.cells, r.cells);
@@ -105,10 +112,10 @@ TEST_F(SynthTest, LirpGenericAndIce40AreCachedByContent) {
 
 TEST_F(SynthTest, NarrowerFormatsGiveFewerCells) {
   const SynthOptions generic{.generic = true, .ice40 = false};
-  const SynthResult wide = synthesize(Lirp("default"), generic, stderr);
+  const SynthResult wide = Synthesize(Lirp("default"), generic, stderr);
   const fs::path narrow =
       Write("narrow.toml", ReadFile(kSourceDir / "configs" / "lirp" / "narrow.toml"));
-  const SynthResult small = synthesize(Config::load(narrow), generic, stderr);
+  const SynthResult small = Synthesize(Config::load(narrow), generic, stderr);
   EXPECT_FALSE(small.cached);
   EXPECT_NE(small.key, wide.key);
   EXPECT_GT(small.cells, 0);
@@ -122,21 +129,21 @@ TEST_F(SynthTest, TooManyDspsDoesNotFit) {
   // The wide LIRP's operands (S1.15 x 1.16) are wider than a 16x16 SB_MAC16, so its three
   // products take more than the UP5K's eight: a result, not an error.
   const SynthResult r =
-      synthesize(Lirp("wide"), SynthOptions{.generic = false, .ice40 = true}, stderr);
+      Synthesize(Lirp("wide"), SynthOptions{.generic = false, .ice40 = true}, stderr);
   EXPECT_GT(r.mac16, 8);
   EXPECT_GT(r.lut4, 0);
   EXPECT_FALSE(r.fits);
   EXPECT_EQ(r.fmax_mhz, 0);
   EXPECT_EQ(r.cells, -1);  // not asked for
   EXPECT_TRUE(
-      synthesize(Lirp("wide"), SynthOptions{.generic = false, .ice40 = true}, nullptr).cached);
+      Synthesize(Lirp("wide"), SynthOptions{.generic = false, .ice40 = true}, nullptr).cached);
 }
 
 TEST_F(SynthTest, MissingToolIsNamedWithItsPackage) {
   const std::string path = getenv("PATH") != nullptr ? getenv("PATH") : "";
   setenv("PATH", (dir_ / "configs").c_str(), 1);  // no yosys there
   const std::string message =
-      ErrorOf([] { (void)synthesize(Lirp("default"), SynthOptions{}, nullptr); });
+      ErrorOf([] { (void)Synthesize(Lirp("default"), SynthOptions{}, nullptr); });
   setenv("PATH", path.c_str(), 1);
   EXPECT_NE(message.find("yosys"), std::string::npos) << message;
   EXPECT_NE(message.find("Debian package yosys"), std::string::npos) << message;
@@ -148,7 +155,7 @@ TEST_F(SynthTest, YosysFailureGivesItsLastLine) {
   text += "\n[param]\nno_such_param = 1\n";
   const fs::path bad = Write("bad.toml", text);
   const std::string message =
-      ErrorOf([&] { (void)synthesize(Config::load(bad), SynthOptions{}, nullptr); });
+      ErrorOf([&] { (void)Synthesize(Config::load(bad), SynthOptions{}, nullptr); });
   EXPECT_NE(message.find("yosys synthesis of lirp_unit failed"), std::string::npos) << message;
   EXPECT_NE(message.find("NoSuchParam"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(dir_ / "cache" / "synth") &&

@@ -226,8 +226,8 @@ bool rejects_an_output(const std::string& kind) {
 
 std::string repro_command(const CosimReport& r, std::optional<std::uint64_t> only) {
   const auto& o = r.options;
-  std::string cmd = fmt::format("phongsim cosim --pipeline {} --config {} --seed {}", r.pipeline,
-                                r.config_path, o.seed);
+  std::string cmd = fmt::format("phongsim cosim --pipeline {} --config {}{} --seed {}", r.pipeline,
+                                r.config_path, r.rtl_options, o.seed);
   if (only) {
     cmd += fmt::format(" --vector-index {}", *only);
   } else {
@@ -270,12 +270,15 @@ std::string CosimReport::summary() const {
     s += " cycles";
   }
   if (!passed) s += fmt::format("; first failure: {}", failure_kind);
+  if (!rtl_label.empty()) s += fmt::format("; RTL: {}", rtl_label);
   return s;
 }
 
 CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   CosimReport r;
   r.pipeline = subject.pipeline;
+  r.rtl_label = subject.rtl_label;
+  r.rtl_options = subject.rtl_options;
   r.config_name = subject.cfg.name();
   r.config_path = subject.cfg.origin();
   r.options = options;

@@ -11,7 +11,7 @@
 
 #include "model/config.h"
 #include "model/pipeline.h"
-#include "sim/cosim/rtl_library.h"
+#include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stall.h"
 #include "sim/cosim/stimulus.h"
 
@@ -32,6 +32,8 @@ struct CosimOptions {
 
 struct CosimReport {
   std::string pipeline;
+  std::string rtl_label;
+  std::string rtl_options;
   std::string config_name;
   std::string config_path;
   CosimOptions options;
@@ -65,6 +67,10 @@ struct CosimSubject {
   // alone (the failure report then offers that command).
   bool independent_vectors = true;
   DutFactory make_dut;
+  // Which RTL make_dut makes, for the summary line ("built-in lirp_unit"), and the options that
+  // select it again, for reproduce commands (" --rtl my/lirp --top my_lirp").
+  std::string rtl_label;
+  std::string rtl_options;
 };
 
 CosimReport cosim(const CosimSubject& subject, const CosimOptions& options);

@@ -1,7 +1,7 @@
 // The RTL side of a pipeline as the harness drives it: a Verilated valid/ready stream design
 // behind an interface, so one harness serves every pipeline. Each Verilated configuration is
-// built as a plugin (a shared module) that exports phongsim_rtl_create(); rtl_library.h loads
-// plugins and sim/cosim/verilated_dut.h implements this interface inside them.
+// built as a plugin (a shared module) that exports phongsim_rtl_create(); rtl_plugin.h builds and
+// loads plugins and sim/cosim/verilated_dut.h implements this interface inside them.
 //
 // Per-cycle protocol the harness follows (inputs change away from the sampling edge):
 //   set_input / set_in_valid / set_out_ready  (clock low)
@@ -48,12 +48,14 @@ class RtlDut {
 
 // Bumped whenever RtlDut or the plugin entry points change; a plugin built against another
 // version is refused (and rebuilt when it lives in the cache).
-inline constexpr int kRtlPluginAbi = 1;
+inline constexpr int kRtlPluginAbi = 2;
 
 // Plugin entry points (extern "C" so dlsym finds them by name).
 using RtlCreateFn = std::unique_ptr<RtlDut> (*)(const std::vector<Field>& inputs,
                                                 const std::vector<Field>& outputs);
-using RtlGflagsFn = const char* (*)();  // the -G parameters the plugin was Verilated with
+// What the plugin was built from (sim/cosim/rtl_plugin.cpp writes it): lines "key K",
+// "top T", "gflags G", "port ...", "file HASH PATH".
+using RtlInfoFn = const char* (*)();
 using RtlAbiFn = int (*)();
 
 }  // namespace phongsim

@@ -1,6 +1,7 @@
 // RtlDut for a Verilated top with the project's stream port convention (clk_i, rst_ni,
-// in_valid_i, in_ready_o, out_valid_o, out_ready_i). Included only by the per-pipeline plugin
-// sources in sim/pipelines/*_dut.cpp, which say which data port carries which model field:
+// in_valid_i, in_ready_o, out_valid_o, out_ready_i). Included only by the plugin adapters that
+// sim/cosim/rtl_plugin.cpp generates from a design's port binding, which say which data port
+// carries which model field:
 //
 //   PHONGSIM_RTL_PLUGIN(Vlirp_unit, [](Vlirp_unit& top, phongsim::PortMap& map) {
 //     map.input(top.in_p0_i, {"p0_x", "p0_y", "p0_z"});  // packed from the LSB up
@@ -246,17 +247,17 @@ class VerilatedDut final : public RtlDut {
 
 }  // namespace phongsim
 
-// Exports the plugin entry points for a Verilated top and its port binder. PHONGSIM_RTL_GFLAGS
-// is defined by cmake/PhongsimRtl.cmake: the -G parameters this build was Verilated with.
-#define PHONGSIM_RTL_PLUGIN(TOP, BINDER)                                                \
-  extern "C" __attribute__((visibility("default"))) std::unique_ptr<phongsim::RtlDut>   \
-  phongsim_rtl_create(const std::vector<phongsim::Field>& inputs,                       \
-                      const std::vector<phongsim::Field>& outputs) {                    \
-    return std::make_unique<phongsim::VerilatedDut<TOP>>(inputs, outputs, BINDER);      \
-  }                                                                                     \
-  extern "C" __attribute__((visibility("default"))) const char* phongsim_rtl_gflags() { \
-    return PHONGSIM_RTL_GFLAGS;                                                         \
-  }                                                                                     \
-  extern "C" __attribute__((visibility("default"))) int phongsim_rtl_abi() {            \
-    return phongsim::kRtlPluginAbi;                                                     \
+// Exports the plugin entry points for a Verilated top and its port binder. PHONGSIM_RTL_INFO is
+// defined by the generated adapter (sim/cosim/rtl_plugin.cpp): what the plugin was built from.
+#define PHONGSIM_RTL_PLUGIN(TOP, BINDER)                                              \
+  extern "C" __attribute__((visibility("default"))) std::unique_ptr<phongsim::RtlDut> \
+  phongsim_rtl_create(const std::vector<phongsim::Field>& inputs,                     \
+                      const std::vector<phongsim::Field>& outputs) {                  \
+    return std::make_unique<phongsim::VerilatedDut<TOP>>(inputs, outputs, BINDER);    \
+  }                                                                                   \
+  extern "C" __attribute__((visibility("default"))) const char* phongsim_rtl_info() { \
+    return PHONGSIM_RTL_INFO;                                                         \
+  }                                                                                   \
+  extern "C" __attribute__((visibility("default"))) int phongsim_rtl_abi() {          \
+    return phongsim::kRtlPluginAbi;                                                   \
   }

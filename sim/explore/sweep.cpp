@@ -17,16 +17,6 @@
 #include "base/file_util.h"
 #include "base/output_file.h"
 #include "base/paths.h"
-#include "base/rng.h"
-#include "model/kb.h"
-#include "model/kb_setup.h"
-#include "model/lirp.h"
-#include "model/lyon.h"
-#include "model/quad.h"
-#include "sim/pipelines/kb_stimulus.h"
-#include "sim/pipelines/lyon_analysis.h"
-#include "sim/pipelines/quad_analysis.h"
-#include "sim/pipelines/quad_stimulus.h"
 #include "sim/pipelines/registry.h"
 #include "sim/render/image.h"
 #include "sim/render/render.h"
@@ -35,8 +25,6 @@ namespace phongsim {
 namespace {
 
 namespace fs = std::filesystem;
-
-double lsb(fx::Format f) { return std::ldexp(1.0, -f.frac_bits); }
 
 int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
 
@@ -121,109 +109,6 @@ std::string unquote(std::string v) {  // TOML string literals: "..." or '...'
 }
 
 }  // namespace
-
-// ---- Errors against the float references ----
-
-ModelError model_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
-  const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
-  auto model = make_model(pipeline, cfg);
-  ModelError e;
-  double sum = 0;
-  const auto add = [&](double got, double exact, fx::Format f) {
-    const double d = std::abs(got - exact);
-    e.max_abs = std::max(e.max_abs, d);
-    e.max_lsb = std::max(e.max_lsb, d / lsb(f));
-    sum += d / lsb(f);
-    ++e.samples;
-  };
-  if (const auto* lm = dynamic_cast<const LyonModel*>(model.get())) {
-    const LyonOutputError l = lyon_output_error(*lm, samples, seed, /*exact_inputs=*/true);
-    e.max_lsb = l.spec_max;
-    e.mean_lsb = l.spec_mean;
-    e.max_abs = l.spec_max * lsb(lm->formats().spec);
-    e.samples = l.samples;
-    return e;
-  }
-  if (const auto* qm = dynamic_cast<const QuadModel*>(model.get())) {
-    const QuadFormats& f = qm->formats();
-    int triangles = 0;
-    double mean_sum = 0;
-    while (e.samples < samples && triangles < 100000) {
-      const QuadOutputError q = quad_output_error(f, quad_mode(cfg), 10, seed + triangles);
-      triangles += 10;
-      e.max_lsb = std::max(e.max_lsb, q.max);
-      mean_sum += q.mean * static_cast<double>(q.pixels);
-      e.samples += q.pixels;
-    }
-    e.mean_lsb = e.samples == 0 ? 0 : mean_sum / static_cast<double>(e.samples);
-    e.max_abs = e.max_lsb * lsb(f.out);
-    return e;
-  }
-  if (auto* km = dynamic_cast<KbModel*>(model.get())) {
-    const KbFormats& f = km->formats();
-    const KbSetupOptions so = KbSetupOptions::from_config(cfg);
-    const double top = fx::to_real(f.out.max_raw(), f.out);
-    for (std::uint64_t n = 0; e.samples < samples && n < 100000; ++n) {
-      Rng rng(seed, kStimulusStream, n);
-      const KbSpan span = kb_random_span(rng, so, 0);
-      std::vector<std::vector<std::int64_t>> program;
-      try {
-        program = kb_program(span, so.policy, f);
-      } catch (const Error&) {
-        continue;  // more events than the header counts: not a span this configuration takes
-      }
-      km->reset();
-      std::vector<std::int64_t> out;
-      for (const auto& w : program) (void)km->eval(w, out);
-      for (std::size_t i = 0; i < out.size() / 2; ++i) {
-        add(fx::to_real(out[2 * i], f.out),
-            std::clamp(kb_exact(span, static_cast<int>(i)), 0.0, top), f.out);
-      }
-    }
-    e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
-    return e;
-  }
-  if (const auto* lm = dynamic_cast<const LirpModel*>(model.get())) {
-    // Unit-vector components p0, p1 in [-1, 1] and a in [0, 1] as reals: the reference
-    // interpolates them exactly, the model gets them quantized to its input formats.
-    const LirpFormats& f = lm->formats();
-    std::vector<std::int64_t> v(model->inputs().size());
-    std::vector<std::int64_t> out;
-    const double lo = fx::to_real(f.out.min_raw(), f.out);
-    const double hi = fx::to_real(f.out.max_raw(), f.out);
-    const auto q = [](double x, fx::Format fmt) {
-      return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
-    };
-    for (std::uint64_t i = 0; i < samples; ++i) {
-      Rng rng(seed, kStimulusStream, i);
-      double p[6];
-      for (int c = 0; c < 6; ++c) {
-        p[c] = 2 * rng.uniform() - 1;
-        v[static_cast<std::size_t>(c)] = q(p[c], f.p);
-      }
-      const double a = rng.uniform();
-      v[6] = q(a, f.a);
-      out.clear();
-      (void)model->eval(v, out);
-      for (int c = 0; c < 3; ++c) {
-        add(fx::to_real(out[static_cast<std::size_t>(c)], f.out),
-            std::clamp(p[c] + a * (p[3 + c] - p[c]), lo, hi), f.out);
-      }
-    }
-    e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
-    return e;
-  }
-  throw Error(fmt::format("no float reference for pipeline '{}'", cfg.pipeline()));
-}
-
-int structural_latency(const Config& cfg) {
-  const auto model = make_model(find_pipeline(cfg.pipeline()), cfg);
-  if (const auto* lm = dynamic_cast<const LyonModel*>(model.get())) return lm->latency();
-  if (cfg.pipeline() == "lirp") return 3;
-  if (cfg.pipeline() == "kb") return 2;    // header word to its first pixel
-  if (cfg.pipeline() == "quad") return 4;  // program to its first pixel (docs/quad.md)
-  return 0;
-}
 
 // ---- Sweep files ----
 
@@ -414,15 +299,18 @@ PointResult evaluate_point(const SweepSpec& spec, const fs::path& config, std::s
   PointResult r;
   r.index = index;
   r.config = config.string();
-  r.error = model_error(cfg, spec.samples, spec.seed);
-  r.latency = structural_latency(cfg);
+  const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
+  (void)make_model(pipeline, cfg);  // refuses a configuration the pipeline cannot take
+  r.error = pipeline.float_error(cfg, spec.samples, spec.seed);
+  r.latency = pipeline.latency(cfg);
   for (const SweepScene& sc : spec.scenes) {
     const ImageMetrics m = scene_metrics(sc.scene, sc.method, spec.scene_size, config);
     r.colour_correctness.emplace_back(sc.scene, m.colour_correctness);
     r.psnr.emplace_back(sc.scene, m.psnr);
   }
   if (spec.synth.generic || spec.synth.ice40) {
-    r.synth = synthesize(cfg, spec.synth, log);
+    r.synth =
+        synthesize(rtl_design(find_pipeline(cfg.pipeline()), cfg), cfg.origin(), spec.synth, log);
     r.synthesized = true;
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -815,7 +703,9 @@ SearchResult search_min_width(const SearchSpec& spec,
       const fs::path file = dir / (spec.name + ".toml");
       write_text(file, point_toml(spec.base, candidate(f), "", ""));
       const Config cfg = Config::load(file);
-      Evaluation e{model_error(cfg, spec.samples, spec.seed)};
+      const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
+      (void)make_model(pipeline, cfg);
+      Evaluation e{pipeline.float_error(cfg, spec.samples, spec.seed)};
       if (spec.min_colour_correctness > 0) {
         e.cc = scene_metrics(spec.scene, spec.method, spec.scene_size, file).colour_correctness;
       }

@@ -17,22 +17,9 @@
 
 #include "model/config.h"
 #include "sim/explore/synth.h"
+#include "sim/pipelines/registry.h"
 
 namespace phongsim {
-
-// The model against the pipeline's float reference on random inputs, in LSBs of the output
-// format (for Lyon its spec output) and absolutely.
-struct ModelError {
-  double max_lsb = 0;
-  double mean_lsb = 0;
-  double max_abs = 0;
-  std::uint64_t samples = 0;  // outputs compared
-};
-[[nodiscard]] ModelError model_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed);
-
-// Cycles from an input's handshake to its first output (structural: depends on [param] only;
-// the co-simulation measures the same).
-[[nodiscard]] int structural_latency(const Config& cfg);
 
 struct SweepAxis {
   std::string key;                  // "format.vec", "param.k", "mode.round", "setup.policy"

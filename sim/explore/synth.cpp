@@ -22,15 +22,13 @@
 #include "base/file_util.h"
 #include "base/paths.h"
 #include "base/process.h"
-#include "sim/cosim/rtl_library.h"
+#include "sim/cosim/rtl_plugin.h"
 
 namespace phongsim {
 namespace fs = std::filesystem;
 namespace {
 
 // Paths and tools fixed when phongsim was configured (CMakeLists.txt).
-const fs::path& kSourceDir = data_root();
-const char* const kCmake = cmake_program();
 
 // Part of every cache key: bump when the flow changes in a way the hashed scripts do not show
 // (the wrapper, what is counted, how results are parsed).
@@ -115,52 +113,17 @@ std::string tool_version(const std::vector<std::string>& argv, const char* packa
   return lines.empty() ? std::string() : lines.back();
 }
 
-struct RtlSources {
-  std::string top;
-  std::vector<fs::path> files;  // absolute, in reading order
-};
-
-// The pipeline's top and sources as cmake/PhongsimRtl.cmake lists them (as synth_stats.sh asks).
-RtlSources rtl_sources(const std::string& pipeline, const fs::path& tmp) {
-  const fs::path script = tmp / "sources.cmake";
-  std::ofstream(script) << "include(\"${PHONGSIM_SOURCE_DIR}/cmake/PhongsimRtl.cmake\")\n"
-                           "phongsim_rtl_sources(${PIPELINE} files)\n"
-                           "message(\"top=${PHONGSIM_RTL_${PIPELINE}_TOP}\")\n"
-                           "foreach(f IN LISTS files)\n"
-                           "  message(\"src=${f}\")\n"
-                           "endforeach()\n";
-  const auto r = run_process({kCmake, "-DPHONGSIM_SOURCE_DIR=" + kSourceDir.string(),
-                              "-DPIPELINE=" + pipeline, "-P", script.string()});
-  RtlSources s;
-  for (const auto& line : lines_of(r.out)) {
-    if (line.starts_with("top=")) s.top = line.substr(4);
-    if (line.starts_with("src=")) s.files.emplace_back(line.substr(4));
-  }
-  if (r.exit_code != 0 || s.top.empty() || s.files.empty()) {
-    throw Error(fmt::format("cannot list the RTL sources of pipeline '{}': {}", pipeline,
-                            last_error_line(r.out)));
-  }
-  return s;
-}
-
-// "-GPFmt=65802 -GK=2" -> "-set PFmt 65802 -set K 2" (the rule of scripts/synth_stats.sh).
-std::string chparams(const std::string& gflags) {
-  static const std::regex flag("^-G([A-Za-z0-9_]+)=(-?[0-9]+)$");
-  std::istringstream in(gflags);
-  std::string word;
+// "chparam -set PFmt 65802 -set K 2": the parameters as Yosys takes them.
+std::string chparams(std::span<const RtlParam> params) {
   std::string out;
-  while (in >> word) {
-    std::smatch m;
-    if (!std::regex_match(word, m, flag)) {
-      throw Error(fmt::format("synthesis cannot translate the RTL parameter '{}'", word));
-    }
-    out += fmt::format("{}-set {} {}", out.empty() ? "" : " ", m[1].str(), m[2].str());
+  for (const RtlParam& p : params) {
+    out += fmt::format("{}-set {} {}", out.empty() ? "" : " ", p.name, p.value);
   }
   return out;
 }
 
 // The start of every yosys script: read the sources (plus `extra`), set the parameters.
-std::string read_script(const RtlSources& src, const std::string& chparam,
+std::string read_script(const RtlDesign& src, const std::string& chparam,
                         const std::string& extra) {
   std::string s = "read_verilog -sv";
   for (const auto& f : src.files) s += fmt::format(" {}", quoted(f));
@@ -202,17 +165,17 @@ void log_line(std::FILE* log, const std::string& text, std::chrono::steady_clock
   std::fflush(log);
 }
 
-void run_yosys(const std::string& script, const fs::path& log_path, const Config& cfg,
+void run_yosys(const std::string& script, const fs::path& log_path, const std::string& label,
                const std::string& top) {
   const auto r = run_process({"yosys", "-q", "-p", script}, log_path);
   if (r.exit_code == 0) return;
   const std::string line = last_error_line(read_file(log_path));
   if (line.find("Assertion failed") != std::string::npos &&
       (line.find("dlatch") != std::string::npos || line.find("DLATCH") != std::string::npos)) {
-    throw Error(fmt::format("{}: the RTL of {} has latches (yosys: {})", cfg.origin(), top, line));
+    throw Error(fmt::format("{}: the RTL of {} has latches (yosys: {})", label, top, line));
   }
-  throw Error(fmt::format("{}: yosys synthesis of {} failed (exit {}): {}", cfg.origin(), top,
-                          r.exit_code, line));
+  throw Error(
+      fmt::format("{}: yosys synthesis of {} failed (exit {}): {}", label, top, r.exit_code, line));
 }
 
 nlohmann::json read_json(const fs::path& path) {
@@ -231,11 +194,11 @@ const nlohmann::json& stat_module(const nlohmann::json& stat, const std::string&
   return *it;
 }
 
-void run_generic(const RtlSources& src, const std::string& chparam, const fs::path& dir,
-                 const Config& cfg, SynthResult& r, std::FILE* log) {
+void run_generic(const RtlDesign& src, const std::string& chparam, const fs::path& dir,
+                 const std::string& label, SynthResult& r, std::FILE* log) {
   const auto t0 = std::chrono::steady_clock::now();
   run_yosys(read_script(src, chparam, "") + generic_script(src.top, plain(dir)),
-            dir / "yosys-generic.log", cfg, src.top);
+            dir / "yosys-generic.log", label, src.top);
   try {
     const auto generic = read_json(dir / "generic.json");
     r.cells = stat_module(generic, src.top).at("num_cells").get<std::int64_t>();
@@ -246,11 +209,11 @@ void run_generic(const RtlSources& src, const std::string& chparam, const fs::pa
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {  // JSON shape, number syntax
-    throw Error(fmt::format("unexpected yosys statistics for {}: {}", cfg.origin(), e.what()));
+    throw Error(fmt::format("unexpected yosys statistics for {}: {}", label, e.what()));
   }
   log_line(log,
-           fmt::format("yosys generic synthesis of {} ({}): {} cells, ~{} transistors",
-                       cfg.origin(), src.top, r.cells, r.transistors),
+           fmt::format("yosys generic synthesis of {} ({}): {} cells, ~{} transistors", label,
+                       src.top, r.cells, r.transistors),
            t0);
 }
 
@@ -333,15 +296,15 @@ std::vector<std::string> overused(const std::string& log) {
   return over;
 }
 
-void run_ice40(const RtlSources& src, const std::string& chparam, const fs::path& dir,
-               const Config& cfg, SynthResult& r, std::FILE* log) {
+void run_ice40(const RtlDesign& src, const std::string& chparam, const fs::path& dir,
+               const std::string& label, SynthResult& r, std::FILE* log) {
   auto t0 = std::chrono::steady_clock::now();
   run_yosys(read_script(src, chparam, "") + ports_script(src.top, plain(dir)),
-            dir / "yosys-ports.log", cfg, src.top);
+            dir / "yosys-ports.log", label, src.top);
   const fs::path wrap = dir / "wrap.v";
   std::ofstream(wrap) << wrapper(src.top, read_ports(dir / "ports.txt", src.top));
   run_yosys(read_script(src, chparam, quoted(wrap)) + ice40_script(src.top, plain(dir)),
-            dir / "yosys-ice40.log", cfg, src.top);
+            dir / "yosys-ice40.log", label, src.top);
   try {
     const auto stat = read_json(dir / "ice40-stat.json");
     const auto& top = stat_module(stat, src.top);
@@ -354,11 +317,11 @@ void run_ice40(const RtlSources& src, const std::string& chparam, const fs::path
       if (type.starts_with("SB_DFF")) r.ff += count;
     }
   } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("unexpected yosys statistics for {}: {}", cfg.origin(), e.what()));
+    throw Error(fmt::format("unexpected yosys statistics for {}: {}", label, e.what()));
   }
   log_line(log,
            fmt::format("yosys synth_ice40 of {} ({}): {} LUT4, {} carries, {} SB_MAC16, {} FFs",
-                       cfg.origin(), src.top, r.lut4, r.carry, r.mac16, r.ff),
+                       label, src.top, r.lut4, r.carry, r.mac16, r.ff),
            t0);
 
   t0 = std::chrono::steady_clock::now();
@@ -374,7 +337,7 @@ void run_ice40(const RtlSources& src, const std::string& chparam, const fs::path
     const auto over = overused(pnr_text);
     const std::string line = last_error_line(pnr_text.empty() ? p.out : pnr_text);
     if (over.empty() && line.find("no BELs remaining") == std::string::npos) {
-      throw Error(fmt::format("{}: nextpnr-ice40 failed on {} (exit {}): {}", cfg.origin(), src.top,
+      throw Error(fmt::format("{}: nextpnr-ice40 failed on {} (exit {}): {}", label, src.top,
                               p.exit_code, line));
     }
     r.fits = false;
@@ -382,8 +345,8 @@ void run_ice40(const RtlSources& src, const std::string& chparam, const fs::path
     std::string why;
     for (const auto& o : over) why += (why.empty() ? "" : ", ") + o;
     log_line(log,
-             fmt::format("nextpnr-ice40 --{} of {}: does not fit ({})", kSynthIce40Device,
-                         cfg.origin(), why.empty() ? line : why),
+             fmt::format("nextpnr-ice40 --{} of {}: does not fit ({})", kSynthIce40Device, label,
+                         why.empty() ? line : why),
              t0);
     return;
   }
@@ -394,14 +357,13 @@ void run_ice40(const RtlSources& src, const std::string& chparam, const fs::path
       fmax = std::min(fmax, f.at("achieved").get<double>());
     }
   } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("unexpected nextpnr report for {}: {}", cfg.origin(), e.what()));
+    throw Error(fmt::format("unexpected nextpnr report for {}: {}", label, e.what()));
   }
   if (!std::isfinite(fmax)) throw Error(fmt::format("nextpnr timed no clock of {}", src.top));
   r.fits = true;
   r.fmax_mhz = fmax;
   log_line(log,
-           fmt::format("nextpnr-ice40 --{} of {}: fmax {:.2f} MHz", kSynthIce40Device, cfg.origin(),
-                       fmax),
+           fmt::format("nextpnr-ice40 --{} of {}: fmax {:.2f} MHz", kSynthIce40Device, label, fmax),
            t0);
 }
 
@@ -459,24 +421,23 @@ void write_cached(const fs::path& path, const nlohmann::json& j, std::FILE* log)
 
 }  // namespace
 
-SynthResult synthesize(const Config& cfg, const SynthOptions& options, std::FILE* log) {
-  const std::string gflags = rtl_gflags(cfg);
-  const std::string chparam = chparams(gflags);
+SynthResult synthesize(const RtlDesign& src, const std::string& label, const SynthOptions& options,
+                       std::FILE* log) {
+  const std::string gflags = verilator_gflags(src.params);
+  const std::string chparam = chparams(src.params);
   const std::string yosys_version = tool_version({"yosys", "-V"}, "yosys");
   const std::string nextpnr_version =
       options.ice40 ? tool_version({"nextpnr-ice40", "--version"}, "nextpnr-ice40") : "";
 
   TempDir tmp;
-  const RtlSources src = rtl_sources(cfg.pipeline(), tmp.path());
 
   ContentHash h;
   h.add(kFlowVersion);
-  h.add(cfg.pipeline());
   h.add(src.top);
   h.add(gflags);
   h.add(fmt::format("generic={} ice40={}", options.generic, options.ice40));
   h.add(yosys_version);
-  h.add(read_script(RtlSources{"TOP", {"SRC"}}, "CHPARAM", "EXTRA"));
+  h.add(read_script(RtlDesign{"", "TOP", {"SRC"}, {}, {}}, "CHPARAM", "EXTRA"));
   if (options.generic) h.add(generic_script("TOP", "DIR"));
   if (options.ice40) {
     h.add(nextpnr_version);
@@ -486,7 +447,7 @@ SynthResult synthesize(const Config& cfg, const SynthOptions& options, std::FILE
     h.add(ice40_script("TOP", "DIR"));
   }
   for (const auto& f : src.files) {
-    h.add(f.lexically_relative(kSourceDir).string());
+    h.add(f.filename().string());
     h.add(read_file(f));
   }
   const std::string key = h.hex();
@@ -496,12 +457,12 @@ SynthResult synthesize(const Config& cfg, const SynthOptions& options, std::FILE
   SynthResult r;
   r.key = key;
   if (!options.generic && !options.ice40) return r;
-  if (options.generic) run_generic(src, chparam, tmp.path(), cfg, r, log);
-  if (options.ice40) run_ice40(src, chparam, tmp.path(), cfg, r, log);
+  if (options.generic) run_generic(src, chparam, tmp.path(), label, r, log);
+  if (options.ice40) run_ice40(src, chparam, tmp.path(), label, r, log);
 
   auto j = to_json(r);
-  j["pipeline"] = cfg.pipeline();
-  j["config"] = cfg.origin();
+  j["design"] = src.name;
+  j["config"] = label;
   j["top"] = src.top;
   j["gflags"] = gflags;
   j["generic"] = options.generic;

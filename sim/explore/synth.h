@@ -2,9 +2,8 @@
 // estimate) and iCE40 synthesis with place and route (LUTs, carries, DSPs, flip-flops, fmax),
 // cached by content so a sweep pays for each configuration once.
 //
-// The RTL top and its sources come from cmake/PhongsimRtl.cmake, its parameters from
-// rtl_gflags(cfg) (scripts/config_gflags.py, turned into yosys `chparam -set` as
-// scripts/synth_stats.sh does). Both flows refuse latches.
+// The design (top, sources, parameters: sim/cosim/rtl_plugin.h) is what the co-simulation
+// Verilates; its parameters become yosys `chparam -set`. Both flows refuse latches.
 //
 // Generic: `synth -flatten -top <top>`; `cells` is the flattened cell count, `transistors` Yosys's
 // `stat -tech cmos` estimate after `dffunmap` (enables and synchronous resets become gates so the
@@ -27,7 +26,7 @@
 #include <cstdio>
 #include <string>
 
-#include "model/config.h"
+#include "sim/cosim/rtl_plugin.h"
 
 namespace phongsim {
 
@@ -59,6 +58,8 @@ struct SynthResult {
 // results are written to the cache atomically. `log` (may be null) gets one line per synthesis or
 // place-and-route run. Errors: a missing tool (naming it and its Debian package), a failing tool
 // (with the last line of its log).
-SynthResult synthesize(const Config& cfg, const SynthOptions& options, std::FILE* log);
+// `label` (the configuration file) names the design in messages.
+SynthResult synthesize(const RtlDesign& design, const std::string& label,
+                       const SynthOptions& options, std::FILE* log);
 
 }  // namespace phongsim

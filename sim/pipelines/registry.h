@@ -1,28 +1,81 @@
-// The registry of pipelines the tools know: how to build each one's model from a configuration
-// and its directed stimulus. Adding a pipeline = one entry here (docs/architecture.md).
+// The registry of pipelines: everything phongsim knows about a pipeline besides its RTL, model,
+// configurations and spec lives in its entry, sim/pipelines/<name>.cpp. Nothing outside
+// sim/pipelines/ names a pipeline or casts to its model; adding one is docs/architecture.md's
+// short list.
 #pragma once
 
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "model/config.h"
 #include "model/pipeline.h"
+#include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stimulus.h"
 
 namespace phongsim {
 
+// The model against the pipeline's float reference on random in-range inputs (the reference sees
+// the exact reals, the model their quantization), in LSBs of the output format (Lyon: its spec
+// output) and absolutely.
+struct ModelError {
+  double max_lsb = 0;
+  double mean_lsb = 0;
+  double max_abs = 0;
+  std::uint64_t samples = 0;  // outputs compared
+};
+
+// A deliberate RTL bug that co-simulation must catch: `from` (which must occur exactly once in
+// `file`) replaced by `to`, co-simulated with configs/<pipeline>/<config>.toml.
+struct Mutant {
+  std::string_view name;
+  std::string_view config;
+  std::string_view file;  // relative to the tree, e.g. "rtl/common/fx_resize.sv"
+  std::string_view from;
+  std::string_view to;
+  std::string_view breaks;  // what it breaks, one line
+};
+
 struct PipelineInfo {
   std::string_view name;     // as in --pipeline and configs/<name>/
-  std::string_view summary;  // one line for --help
+  std::string_view summary;  // one line for listings
+
+  // ---- RTL: the port contract a design of this pipeline implements (docs/<name>.md) ----
+  std::string_view top;  // top module of rtl/
+  // Relative to the tree; a folder stands for its *.sv files (rtl_files(): packages first).
+  std::vector<std::string_view> rtl_files;
+  std::vector<PortBinding> ports;  // data ports besides the stream handshake
+
+  // ---- model ----
   // Builds the model, refusing configurations that are incomplete, have unknown keys, or whose
   // intermediates would not fit the model's integers (Error naming the config file).
   std::unique_ptr<PipelineModel> (*make_model)(const Config& cfg);
-  // Directed corner vectors plus seeded random vectors for this pipeline.
+  // Directed corner vectors plus seeded random vectors.
   Stimulus (*make_stimulus)(const PipelineModel& model, const Config& cfg);
   // True when every output depends only on its own input vector, so one vector can be re-run
-  // alone (--vector-index); false for pipelines with state between vectors.
+  // alone; false for pipelines with state between vectors.
   bool independent_vectors;
+  // Random vectors of a default co-simulation: about a million outputs.
+  std::uint64_t default_vectors;
+  // Cycles from an input's handshake to its first output in phongsim's RTL, stall-free (depends
+  // on [param] only). The test suite checks it against what the harness measures; other RTL
+  // (--rtl) may take longer.
+  int (*latency)(const Config& cfg);
+  // True when phongsim's RTL takes one input and gives one output per clock, stall-free.
+  bool one_per_clock;
+
+  // ---- accuracy ----
+  ModelError (*float_error)(const Config& cfg, std::uint64_t samples, std::uint64_t seed);
+  // `phongsim analyze <name>`: the approximations and fixed-point error of `configs`, as text.
+  void (*analyze)(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
+                  std::FILE* out);
+
+  std::vector<Mutant> mutants;
 };
 
 [[nodiscard]] std::span<const PipelineInfo> pipelines();
@@ -33,5 +86,14 @@ struct PipelineInfo {
 // Loads `cfg` for `pipeline`: checks that the file's `pipeline` key matches and builds the model.
 [[nodiscard]] std::unique_ptr<PipelineModel> make_model(const PipelineInfo& pipeline,
                                                         const Config& cfg);
+
+// configs/<name>/*.toml, sorted.
+[[nodiscard]] std::vector<std::filesystem::path> pipeline_configs(const PipelineInfo& pipeline);
+
+// The design of `cfg` from phongsim's rtl/, or from the user's `files` with top `top` (empty:
+// the built-in top).
+[[nodiscard]] RtlDesign rtl_design(const PipelineInfo& pipeline, const Config& cfg,
+                                   std::vector<std::filesystem::path> files = {},
+                                   std::string top = {});
 
 }  // namespace phongsim

@@ -23,7 +23,7 @@
 #include "ref/lyon_float.h"
 #include "ref/quad_float.h"
 #include "sim/cosim/harness.h"
-#include "sim/cosim/rtl_library.h"
+#include "sim/cosim/rtl_plugin.h"
 #include "sim/pipelines/registry.h"
 #include "sim/render/frame.h"
 #include "sim/render/scene.h"
@@ -208,8 +208,9 @@ class Unit {
         backend_(backend) {
     if (backend == Backend::rtl) {
       const RtlPlugin plugin =
-          locate_rtl(cfg_, no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
-      library_ = RtlLibrary::open(plugin.path, plugin.gflags);
+          locate_rtl(rtl_design(find_pipeline(cfg_.pipeline()), cfg_), *model_,
+                     no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
+      library_ = RtlLibrary::open(plugin);
     }
   }
 
@@ -271,7 +272,7 @@ Image pixel_float(const Method& m, const Frame& f) {
 // a = 0; V and L unit vectors; shininess n (arrangement 8: m = round(sqrt(n))).
 Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
                  std::string_view what) {
-  const auto& lf = dynamic_cast<const LyonModel&>(unit.model()).formats();
+  const LyonFormats lf = LyonFormats::from_config(unit.config());
   const auto q = [](double x, fx::Format fmt) {
     return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
   };
@@ -399,7 +400,7 @@ Image vertex_float(const Method& m, const Frame& f) {
 // where the triangle is the visible surface.
 Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgress& progress,
                   std::string_view what) {
-  const QuadFormats qf = dynamic_cast<const QuadModel&>(unit.model()).formats();
+  const QuadFormats qf = QuadFormats::from_config(unit.config());
   if (qf.sub_bits != kSubBits) {
     throw Error(fmt::format("{}: the renderer projects with {} subpixel bits; {} has {}", what,
                             kSubBits, unit.config().origin(), qf.sub_bits));
@@ -556,7 +557,7 @@ Image kb_float(const Method& m, const Frame& f) {
 // specular one-vector terms scaled by the light's and the material's colour. The channel values
 // are scaled by the output's top value, like the quadratic unit's (vertex_unit).
 Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::string_view what) {
-  const KbFormats kf = dynamic_cast<const KbModel&>(unit.model()).formats();
+  const KbFormats kf = KbFormats::from_config(unit.config());
   const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
   const double top = fx::to_real(kf.out.max_raw(), kf.out);
   const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * f.material.shininess);

@@ -6,7 +6,9 @@
 // (events before the last pixel, increasing indices) with arbitrary values. Directed vectors
 // cover what well-formed programs never do: late events, events at or after the last pixel,
 // left-over event words, accumulator wrap-around and every clamp corner.
-#include "sim/pipelines/kb_stimulus.h"
+#include "sim/pipelines/kb.h"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -176,6 +178,198 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
     std::copy(w.begin(), w.end(), in.begin());
   };
   return Stimulus(model, std::move(d), random);
+}
+
+// ---- analysis ----
+
+std::vector<KbFitRow> kb_fit_table() {
+  std::vector<KbFitRow> rows;
+  for (int n = 1; n <= 125; ++n) {
+    KbFitRow r;
+    r.n = n;
+    r.closed = kb::closed_form(n);
+    r.lsq = kb::least_squares(n);
+    r.closed_max = kb::max_error(r.closed, n);
+    r.closed_rms = kb::rms_error(r.closed, n);
+    r.lsq_max = kb::max_error(r.lsq, n);
+    r.lsq_rms = kb::rms_error(r.lsq, n);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+double kb_drift(int length, int guard_bits, KbPolicy policy, fx::Format out, int spans,
+                std::uint64_t seed) {
+  KbFormats f;
+  f.acc = fx::Format{true, 2, out.frac_bits + guard_bits};
+  f.out = out;
+  f.event_bits = 6;
+  KbModel engine(f);
+  std::vector<std::int64_t> trace;
+  std::vector<std::int64_t> outputs;
+  engine.trace_accumulator(&trace);
+  const KbSetupOptions options{policy, KbAbSource::least_squares, 2};
+  const double out_lsb = std::ldexp(1.0, -out.frac_bits);
+  double worst = 0;
+  for (int s = 0; s < spans; ++s) {
+    Rng rng(seed, kStimulusStream, static_cast<std::uint64_t>(s));
+    const KbSpan span = kb_random_span(rng, options, length);
+    trace.clear();
+    engine.reset();
+    for (const auto& word : kb_program(span, policy, f)) engine.eval(word, outputs);
+    // What reaches the output: both sides clamped to [0, 1] (before the output rounding).
+    const auto clamp01 = [](double x) { return std::clamp(x, 0.0, 1.0); };
+    for (int i = 0; i < length; ++i) {
+      const double drift =
+          std::abs(clamp01(fx::to_real(trace[i], f.acc)) - clamp01(kb_exact(span, i))) / out_lsb;
+      worst = std::max(worst, drift);
+    }
+  }
+  return worst;
+}
+
+int kb_guard_bits_needed(int length) {
+  const double l = length;
+  return static_cast<int>(std::ceil(std::log2((l * l - l + 2) / 2)));
+}
+
+// ---- registry entry ----
+namespace {
+
+std::unique_ptr<PipelineModel> make_model(const Config& cfg) {
+  const KbFormats formats = KbFormats::from_config(cfg);
+  (void)KbSetupOptions::from_config(cfg);  // the stimulus reads it; check it here
+  cfg.check_all_used();
+  try {
+    return std::make_unique<KbModel>(formats);
+  } catch (const Error& e) {
+    cfg.fail(e.what());
+  }
+}
+
+Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
+  return make_kb_stimulus(model, KbSetupOptions::from_config(cfg));
+}
+
+int latency(const Config&) { return 2; }  // header word to its first pixel (docs/kb.md)
+
+// Random spans of the configuration's setup through the model, against the exact span.
+ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
+  const KbFormats f = KbFormats::from_config(cfg);
+  const KbSetupOptions so = KbSetupOptions::from_config(cfg);
+  KbModel model(f);
+  const double top = fx::to_real(f.out.max_raw(), f.out);
+  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
+  ModelError e;
+  double sum = 0;
+  for (std::uint64_t n = 0; e.samples < samples && n < 100000; ++n) {
+    Rng rng(seed, kStimulusStream, n);
+    const KbSpan span = kb_random_span(rng, so, 0);
+    std::vector<std::vector<std::int64_t>> program;
+    try {
+      program = kb_program(span, so.policy, f);
+    } catch (const Error&) {
+      continue;  // more events than the header counts: not a span this configuration takes
+    }
+    model.reset();
+    std::vector<std::int64_t> out;
+    for (const auto& w : program) (void)model.eval(w, out);
+    for (std::size_t i = 0; i < out.size() / 2; ++i) {
+      const double d = std::abs(fx::to_real(out[2 * i], f.out) -
+                                std::clamp(kb_exact(span, static_cast<int>(i)), 0.0, top));
+      e.max_abs = std::max(e.max_abs, d);
+      e.max_lsb = std::max(e.max_lsb, d / lsb);
+      sum += d / lsb;
+      ++e.samples;
+    }
+  }
+  e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
+  return e;
+}
+
+void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed, std::FILE* out) {
+  fmt::print(out,
+             "Three-piece quadratic against cos^n theta over [0, pi] (kb::max_error, rms_error)\n");
+  fmt::print(out, "  {:>3}  {:>8} {:>8} {:>9} {:>9}   {:>8} {:>8} {:>9} {:>9}\n", "n", "a closed",
+             "b closed", "max", "rms", "a lsq", "b lsq", "max", "rms");
+  for (const KbFitRow& r : kb_fit_table()) {
+    fmt::print(out,
+               "  {:>3}  {:>8.5f} {:>8.5f} {:>9.6f} {:>9.6f}   {:>8.5f} {:>8.5f} {:>9.6f} "
+               "{:>9.6f}\n",
+               r.n, r.closed.a, r.closed.b, r.closed_max, r.closed_rms, r.lsq.a, r.lsq.b, r.lsq_max,
+               r.lsq_rms);
+  }
+  const int spans = static_cast<int>(std::max<std::uint64_t>(1, samples / 2000));
+  const fx::Format out_fmt{false, 0, 8};
+  const int lengths[] = {16, 64, 256, 1024, 4096};
+  const int guards[] = {0, 4, 8, 12, 16, 20, 24, 40};
+  for (const KbPolicy policy : {KbPolicy::exact_reload, KbPolicy::d2_only}) {
+    fmt::print(out,
+               "\nDrift: max |accumulator - exact span|, both clamped to [0, 1], in LSBs of an "
+               "8-bit output; {} random spans per cell (1-2 terms, n 1..125), seed {}, policy {}\n",
+               spans, seed, policy == KbPolicy::d2_only ? "d2_only" : "exact_reload");
+    fmt::print(out, "  {:>6}", "length");
+    for (const int g : guards) fmt::print(out, " {:>9}", fmt::format("G={}", g));
+    fmt::print(out, "\n");
+    for (const int length : lengths) {
+      fmt::print(out, "  {:>6}", length);
+      for (const int g : guards) {
+        fmt::print(out, " {:>9.4f}", kb_drift(length, g, policy, out_fmt, spans, seed));
+      }
+      fmt::print(out, "\n");
+    }
+  }
+  fmt::print(out,
+             "\nGuard bits for a drift of at most 1/2 output LSB (exact_reload): analytic bound "
+             "G >= log2((L^2 - L + 2)/2), and the smallest G that met it on the spans above\n");
+  fmt::print(out, "  {:>6} {:>9} {:>9}\n", "length", "analytic", "measured");
+  for (const int length : lengths) {
+    int measured = 0;
+    while (measured < 40 &&
+           kb_drift(length, measured, KbPolicy::exact_reload, out_fmt, spans, seed) > 0.5) {
+      ++measured;
+    }
+    fmt::print(out, "  {:>6} {:>9} {:>9}\n", length, kb_guard_bits_needed(length), measured);
+  }
+}
+
+}  // namespace
+
+const PipelineInfo& kb_pipeline() {
+  static const PipelineInfo info{
+      .name = "kb",
+      .summary = "Kuijk-Blake forward-differencing engine: piecewise-quadratic cos^n along spans",
+      .top = "kb_engine",
+      .rtl_files = {"rtl/common", "rtl/kb/kb_engine.sv"},
+      .ports = {{"in_n_i", true, {"n"}},
+                {"in_count_i", true, {"count"}},
+                {"in_f_i", true, {"f"}},
+                {"in_d1_i", true, {"d1"}},
+                {"in_d2_i", true, {"d2"}},
+                {"in_reload_i", true, {"reload"}},
+                {"out_value_o", false, {"value"}},
+                {"out_last_o", false, {"last"}}},
+      .make_model = make_model,
+      .make_stimulus = make_stimulus,
+      .independent_vectors = false,
+      // Vectors are span-program words, about 15 pixels each on average.
+      .default_vectors = 100000,
+      .latency = latency,
+      .one_per_clock = true,
+      .float_error = float_error,
+      .analyze = analyze,
+      .mutants = {{"kb-event-late", "default", "rtl/kb/kb_engine.sv", "(head_n <= i_q)",
+                   "(head_n < i_q)", "events applied one pixel late"},
+                  {"kb-reload", "default", "rtl/kb/kb_engine.sv",
+                   "assign d1_step = apply_event & head_reload ? head_d1 : d1;",
+                   "assign d1_step = d1;", "reload of the first difference ignored"},
+                  {"kb-d2-hold", "d2_only", "rtl/kb/kb_engine.sv", "      d2_q <= d2_step;",
+                   "      d2_q <= d2_q;", "an event's second difference lasts one step only"},
+                  {"kb-drain", "default", "rtl/kb/kb_engine.sv",
+                   "      remaining_q <= remaining_q - 1'b1;", "      remaining_q <= remaining_q;",
+                   "left-over event words never dropped"}},
+  };
+  return info;
 }
 
 }  // namespace phongsim

@@ -1,0 +1,78 @@
+// What the phongsim subcommands share: choosing a pipeline configuration and its RTL, loading
+// them, range-checked number options, and the progress line. Each subcommand lives in its own
+// file (app/<command>.cpp) and registers itself through commands.h.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/config.h"
+#include "model/pipeline.h"
+#include "sim/cosim/cosim.h"
+#include "sim/pipelines/registry.h"
+
+namespace phongsim::cli {
+
+// What a subcommand runs once the command line parsed; its exit status.
+using Action = std::function<int()>;
+
+// Upper bounds of counting options: far beyond any run that ends, far below wrap-around.
+inline constexpr std::uint64_t kMaxVectors = 1'000'000'000'000;
+inline constexpr std::uint64_t kMaxCycles = 1'000'000'000'000;
+
+// A counting option: digits only, at most `max` (no signs, no wrap-around: "-1" is refused).
+CLI::Option* add_count(CLI::App& cmd, const std::string& name, std::uint64_t& value,
+                       const std::string& description, std::uint64_t max);
+
+// --pipeline / --config and the RTL to use, shared by every subcommand that works on one
+// configuration.
+struct Target {
+  std::string pipeline;
+  std::string config;
+  std::vector<std::string> configs;  // several --config, where the command takes a list
+  bool no_build = false;
+  std::vector<std::string> rtl;  // the user's RTL: files and folders (--rtl)
+  std::string top;               // its top module (--top; default: the built-in top's name)
+  std::string plugin;            // a plugin file given by hand (--rtl-plugin)
+
+  // `rtl_options`: also --rtl, --top, --rtl-plugin and --no-build. `many_configs`: --config may
+  // be given several times (into `configs`).
+  void add_options(CLI::App& cmd, bool rtl_options = true, bool many_configs = false);
+};
+
+struct Loaded {
+  Config cfg;
+  const PipelineInfo* pipeline = nullptr;
+  std::unique_ptr<PipelineModel> model;
+};
+
+// The configuration (default: configs/<pipeline>/default.toml) and its model.
+[[nodiscard]] Loaded load(const Target& t);
+
+// The design the target names: the user's files (--rtl, --top) or phongsim's rtl/.
+[[nodiscard]] RtlDesign design_of(const Loaded& l, const Target& t);
+
+// DUTs of the target's RTL (located, built on demand or refused under --no-build), what to call
+// that RTL in a summary, and the options that select it again.
+struct Rtl {
+  DutFactory make_dut;
+  std::string label;
+  std::string options;
+};
+[[nodiscard]] Rtl rtl_of(const Loaded& l, const Target& t);
+
+// A co-simulation subject for `l` and the target's RTL; `stimulus` must outlive it.
+[[nodiscard]] CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus);
+
+// Progress on stderr: a self-overwriting line when stderr is a terminal, nothing otherwise (logs
+// stay clean); at most five updates a second. (what, done, total); total 0: unknown.
+using Progress = std::function<void(std::string_view, std::uint64_t, std::uint64_t)>;
+[[nodiscard]] Progress progress_line(bool quiet = false);
+
+}  // namespace phongsim::cli

@@ -1,0 +1,113 @@
+// Building, finding and loading the Verilated RTL of one design: a pipeline's top with one
+// configuration's parameters, from phongsim's rtl/ or from the user's own files (--rtl).
+//
+// A plugin is a shared module exporting phongsim_rtl_create() (sim/cosim/verilated_dut.h). It is
+// keyed by its content: every RTL file it compiles, the top, the parameters, the port binding,
+// the C++ it is compiled with, and the Verilator and compiler versions and flags. The cache
+// (rtl_cache_dir()) holds one directory per key; a design whose key is not there is Verilated
+// now (or refused under RtlBuild::never). A changed file therefore always means a new build,
+// never an old result.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "model/config.h"
+#include "model/pipeline.h"
+#include "sim/cosim/rtl_dut.h"
+
+namespace phongsim {
+
+// A data port of the top and the model fields it carries, packed from bit 0 up, each as wide
+// as its format. The stream handshake (clk_i, rst_ni, in_valid_i, in_ready_o, out_valid_o,
+// out_ready_i) is implied.
+struct PortBinding {
+  std::string port;
+  bool input = true;
+  std::vector<std::string> fields;
+};
+
+// Everything that determines a plugin besides the tools.
+struct RtlDesign {
+  std::string name;                          // what it is, for messages and cache entries
+  std::string top;                           // top module
+  std::vector<std::filesystem::path> files;  // SystemVerilog sources, in compile order
+  std::vector<RtlParam> params;              // the top's parameters
+  std::vector<PortBinding> ports;
+};
+
+// "-GPFmt=65802 -GAFmt=266 ...": the parameters as Verilator takes them.
+[[nodiscard]] std::string verilator_gflags(std::span<const RtlParam> params);
+
+// The SystemVerilog files of PATHs, in compile order: a file as given, a folder's *.sv files
+// sorted by name; every *_pkg.sv first (packages must precede their users). Error for a path
+// that does not exist, a file that is not .sv/.v, or no files at all.
+[[nodiscard]] std::vector<std::filesystem::path> rtl_files(
+    std::span<const std::filesystem::path> paths);
+
+// $PHONGSIM_CACHE, else <build tree>/rtl-cache.
+[[nodiscard]] std::filesystem::path rtl_cache_dir();
+
+// Checks the design's ports against its binding and `model`'s field formats: every bound port
+// present with the right direction and width (the sum of its fields' widths), the handshake
+// ports one bit each, no other ports. Verilates nothing but the interface (a fraction of a
+// second). Error naming the first difference; otherwise every port's width.
+std::map<std::string, int> check_ports(const RtlDesign& design, const PipelineModel& model);
+
+enum class RtlBuild { if_missing, never };
+
+struct RtlPlugin {
+  std::filesystem::path path;
+  std::string key;
+  std::string origin;  // "cached", "built now"
+};
+
+// The plugin of `design` (its fields' widths from `model`): from the cache, or Verilated now
+// (progress on `log`), or under RtlBuild::never an Error saying how to build it.
+[[nodiscard]] RtlPlugin locate_rtl(const RtlDesign& design, const PipelineModel& model,
+                                   RtlBuild policy, std::FILE* log);
+
+// Builds every design that is not cached yet, all in one parallel build; returns each one's
+// plugin, in order. designs[i] goes with models[i].
+std::vector<RtlPlugin> build_rtl(std::span<const RtlDesign> designs,
+                                 std::span<const PipelineModel* const> models, std::FILE* log);
+
+// Keeps the plugin loaded for as long as a DUT made from it exists.
+struct DutDeleter {
+  std::shared_ptr<void> library;
+  void operator()(RtlDut* dut) const { delete dut; }
+};
+using DutPtr = std::unique_ptr<RtlDut, DutDeleter>;
+
+class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
+ public:
+  // Loads a plugin from the cache; refuses one of another ABI or whose key is not `key`.
+  static std::shared_ptr<RtlLibrary> open(const RtlPlugin& plugin);
+  // Loads a plugin file given by hand (--rtl-plugin): it must have been built for `design`'s top,
+  // parameters and ports, and every source file it records must still have the content it was
+  // built from (Error naming the first that changed).
+  static std::shared_ptr<RtlLibrary> open_file(const std::filesystem::path& path,
+                                               const RtlDesign& design);
+  ~RtlLibrary();
+  RtlLibrary(const RtlLibrary&) = delete;
+  RtlLibrary& operator=(const RtlLibrary&) = delete;
+
+  // A fresh DUT instance (own Verilator context), ports bound to the model's fields. Error when a
+  // port was built narrower or wider than the model's fields need now.
+  [[nodiscard]] DutPtr create(const PipelineModel& model);
+
+ private:
+  RtlLibrary() = default;
+  static std::shared_ptr<RtlLibrary> load(const std::filesystem::path& path);
+  void* handle_ = nullptr;
+  RtlCreateFn create_ = nullptr;
+  RtlInfoFn info_ = nullptr;
+  std::filesystem::path path_;
+};
+
+}  // namespace phongsim

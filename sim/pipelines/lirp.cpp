@@ -1,0 +1,141 @@
+// Registry entry of the LIRP unit (rtl/lirp/lirp_unit.sv, model/lirp.h, docs/lirp.md).
+#include "sim/pipelines/lirp.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/error.h"
+#include "base/rng.h"
+#include "model/lirp.h"
+#include "ref/lirp_float.h"
+
+namespace phongsim {
+namespace {
+
+std::unique_ptr<PipelineModel> make_model(const Config& cfg) {
+  const LirpFormats formats = LirpFormats::from_config(cfg);
+  try {
+    return std::make_unique<LirpModel>(formats);
+  } catch (const Error& e) {
+    cfg.fail(e.what());
+  }
+}
+
+// Corner values of a and of the vector components, crossed so that every component sees every
+// corner against every other one, plus a values that make exact rounding ties (a = 1/4, 1/2,
+// 3/4 times an odd difference leaves exactly half an output LSB when a has more fraction bits).
+Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
+  const LirpFormats f = LirpFormats::from_config(cfg);
+  const auto pc = corner_values(f.p);
+  auto ac = corner_values(f.a);
+  for (int quarter = 1; quarter <= 3; ++quarter) {
+    if (f.a.frac_bits >= 2) ac.push_back(std::int64_t{quarter} << (f.a.frac_bits - 2));
+  }
+  std::vector<std::vector<std::int64_t>> directed;
+  const std::size_t n = pc.size();
+  for (const std::int64_t a : ac) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) {
+        directed.push_back({pc[i], pc[j], pc[(i + j) % n], pc[j], pc[i], pc[(i * j + 1) % n], a});
+      }
+    }
+  }
+  return Stimulus(model, std::move(directed));
+}
+
+int latency(const Config&) { return 3; }  // diff, prod, out (docs/lirp.md)
+
+void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
+             std::FILE* out) {
+  fmt::print(out,
+             "LIRP output against p0 + a (p1 - p0) in float (inputs uniform: components in "
+             "[-1, 1], a in [0, 1], quantized to the input formats), in output LSBs; {} random "
+             "vectors, seed {}\n",
+             samples, seed);
+  fmt::print(out, "  {:<12} {:>8} {:>8} {:>8} {:>10} {:>10}\n", "config", "p", "a", "out", "max",
+             "mean");
+  for (const Config& cfg : configs) {
+    const LirpFormats f = LirpFormats::from_config(cfg);
+    const ModelError e = lirp_float_error(cfg, samples, seed);
+    fmt::print(out, "  {:<12} {:>8} {:>8} {:>8} {:>10.4f} {:>10.4f}\n", cfg.name(), f.p.str(),
+               f.a.str(), f.out.str(), e.max_lsb, e.mean_lsb);
+  }
+}
+
+}  // namespace
+
+ModelError lirp_float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
+  const LirpFormats f = LirpFormats::from_config(cfg);
+  LirpModel model(f);
+  ModelError e;
+  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
+  const double lo = fx::to_real(f.out.min_raw(), f.out);
+  const double hi = fx::to_real(f.out.max_raw(), f.out);
+  const auto q = [](double x, fx::Format fmt) {
+    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  std::vector<std::int64_t> v(model.inputs().size());
+  std::vector<std::int64_t> result;
+  double sum = 0;
+  for (std::uint64_t i = 0; i < samples; ++i) {
+    Rng rng(seed, kStimulusStream, i);
+    double p[6];
+    for (int c = 0; c < 6; ++c) {
+      p[c] = 2 * rng.uniform() - 1;
+      v[static_cast<std::size_t>(c)] = q(p[c], f.p);
+    }
+    const double a = rng.uniform();
+    v[6] = q(a, f.a);
+    result.clear();
+    (void)model.eval(v, result);
+    for (int c = 0; c < 3; ++c) {
+      const double exact = std::clamp(lirp::lirp(p[c], p[3 + c], a), lo, hi);
+      const double d = std::abs(fx::to_real(result[static_cast<std::size_t>(c)], f.out) - exact);
+      e.max_abs = std::max(e.max_abs, d);
+      e.max_lsb = std::max(e.max_lsb, d / lsb);
+      sum += d / lsb;
+      ++e.samples;
+    }
+  }
+  e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
+  return e;
+}
+
+const PipelineInfo& lirp_pipeline() {
+  static const PipelineInfo info{
+      .name = "lirp",
+      .summary = "LIRP unit: p = (1 - a)·p0 + a·p1 on 3-vectors (Lyon Fig. 7a)",
+      .top = "lirp_unit",
+      .rtl_files = {"rtl/common", "rtl/lirp/lirp_core.sv", "rtl/lirp/lirp_unit.sv"},
+      .ports = {{"in_p0_i", true, {"p0_x", "p0_y", "p0_z"}},
+                {"in_p1_i", true, {"p1_x", "p1_y", "p1_z"}},
+                {"in_a_i", true, {"a"}},
+                {"out_p_o", false, {"p_x", "p_y", "p_z"}}},
+      .make_model = make_model,
+      .make_stimulus = make_stimulus,
+      .independent_vectors = true,
+      .default_vectors = 1000000,
+      .latency = latency,
+      .one_per_clock = true,
+      .float_error = lirp_float_error,
+      .analyze = analyze,
+      .mutants = {{"round", "default", "rtl/common/fx_resize.sv",
+                   "assign bias = Half - IntW'(1) + ", "assign bias = Half + ",
+                   "convergent rounding constant off by one LSB"},
+                  {"skid-valid", "default", "rtl/common/stream_skid.sv",
+                   "if (spare_valid_q) begin\n        main_valid_d  = 1'b1;",
+                   "if (spare_valid_q) begin\n        main_valid_d  = 1'b0;",
+                   "skid buffer drops the transaction it caught during a stall"},
+                  {"ready", "default", "rtl/common/pipe_ctrl.sv",
+                   "assign ready[i] = out_ready_i | ~valid_q[i];",
+                   "assign ready[i] = out_ready_i | valid_q[i];",
+                   "last pipeline stage accepts while full: overwrites a stalled transaction"},
+                  {"sub-order", "default", "rtl/lirp/lirp_core.sv", ".a_i   (p1_i[c*PW+:PW]),",
+                   ".a_i   (p0_i[c*PW+:PW]),", "difference p0 - p0 instead of p1 - p0"}},
+  };
+  return info;
+}
+
+}  // namespace phongsim

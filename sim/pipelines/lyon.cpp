@@ -1,0 +1,375 @@
+// Stimulus for the Lyon pipeline: directed corners that hit its decision points exactly, and
+// random vectors that are half plausible geometry (so the highlight is often non-zero) and half
+// arbitrary bit patterns (so saturation and degenerate inputs are exercised).
+#include "sim/pipelines/lyon.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "base/error.h"
+#include "base/vec3.h"
+#include "model/lyon.h"
+#include "ref/lyon_float.h"
+
+namespace phongsim {
+namespace {
+
+Vec3 random_unit(Rng& rng) {
+  const double z = 2 * rng.uniform() - 1;
+  const double phi = 2 * std::numbers::pi * rng.uniform();
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+// Rotates `a` towards a random direction by `angle` (radians).
+Vec3 tilt(Rng& rng, Vec3 a, double angle) {
+  Vec3 t = random_unit(rng);
+  t = t - dot(t, a) * a;  // perpendicular part
+  const double len = length(t);
+  if (len < 1e-9) return a;
+  return std::cos(angle) * a + std::sin(angle) * (t * (1 / len));
+}
+
+}  // namespace
+
+LyonPixel random_lyon_pixel(Rng& rng, const LyonFormats& f) {
+  LyonPixel p;
+  p.n0 = random_unit(rng);
+  p.n1 = tilt(rng, p.n0, rng.uniform() * std::numbers::pi / 2);
+  p.a = rng.uniform();
+  const Vec3 n = normalized(p.n0 * (1 - p.a) + p.n1 * p.a);
+  const double shin_max = fx::to_real(f.shin.max_raw(), f.shin);
+  p.shin = std::max(1.0, std::round(std::exp(rng.uniform() * std::log(shin_max))));
+  const double n_equiv = f.arrangement == 8 ? p.shin * p.shin : p.shin;
+  p.l = random_unit(rng);
+  const Vec3 mirror = 2 * dot(n, p.l) * n - p.l;
+  p.v = tilt(rng, mirror, rng.uniform() * 3 / std::sqrt(n_equiv));
+  return p;
+}
+
+std::vector<std::int64_t> quantize_lyon_pixel(const LyonPixel& p, const LyonFormats& f) {
+  const auto q = [](double x, fx::Format fmt) {
+    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  return {q(p.n0.x, f.vec), q(p.n0.y, f.vec), q(p.n0.z, f.vec), q(p.n1.x, f.vec), q(p.n1.y, f.vec),
+          q(p.n1.z, f.vec), q(p.a, f.a),      q(p.v.x, f.vec),  q(p.v.y, f.vec),  q(p.v.z, f.vec),
+          q(p.l.x, f.vec),  q(p.l.y, f.vec),  q(p.l.z, f.vec),  q(p.shin, f.shin)};
+}
+
+Stimulus make_lyon_stimulus(const PipelineModel& model) {
+  const LyonFormats& f = dynamic_cast<const LyonModel&>(model).formats();
+  const bool fig8 = f.arrangement == 8;
+  const auto pixel = [&f](Vec3 n0, Vec3 n1, double a, Vec3 v, Vec3 l, double shin) {
+    return quantize_lyon_pixel(LyonPixel{n0, n1, a, v, l, shin}, f);
+  };
+  const double shin_max = fx::to_real(f.shin.max_raw(), f.shin);
+  const Vec3 up{0, 0, 1};
+  std::vector<std::vector<std::int64_t>> directed;
+
+  // Shininess corners: 1, the largest value, and Lyon's extremes (n = 8000, m = 63) if they fit.
+  std::vector<double> shins{1, shin_max, fig8 ? 63.0 : 8000.0, fig8 ? 8.0 : 64.0};
+  // Axis-aligned geometry with exact +-1.0 components: R exactly on L (D = 0, spec = f(0) = 1),
+  // L opposite N (N·L = -1, diffuse clamps to 0), L perpendicular.
+  const Vec3 axes[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const Vec3 n : axes) {
+    for (const double shin : shins) {
+      directed.push_back(pixel(n, n, 0.0, n, n, shin));                    // D = 0
+      directed.push_back(pixel(n, n, 1.0, n, -1.0 * n, shin));             // N·L = -1
+      directed.push_back(pixel(n, n, 0.5, n, Vec3{n.y, n.z, n.x}, shin));  // N·L = 0
+    }
+  }
+  // x/2^k just below, at and just above 1 (the comparator), with N = V = R = (0,0,1) and
+  // L = (-dx, 0, 1) so that D = (dx, 0, 0) exactly: x = (n/2)·dx² (reflect variant; for the
+  // halfway variant these are still valid, merely different, points).
+  for (const double dx : {0.5, 0.25, 0.125, 0.5 - std::ldexp(1.0, -f.vec.frac_bits)}) {
+    const Vec3 l{-dx, 0, 1};
+    const double two_to_k = std::ldexp(1.0, f.k);
+    const double at = 2 * two_to_k / (dx * dx);  // n with x = 2^k
+    for (const double n : {at - 1, at, at + 1}) {
+      directed.push_back(pixel(up, up, 0.0, up, l, fig8 ? std::round(std::sqrt(n)) : n));
+      if (fig8) directed.push_back(pixel(up, up, 0.0, up, l, std::floor(std::sqrt(n))));
+    }
+  }
+  // Unnormalized N': endpoints 90 degrees apart interpolated at a = 1/2 (length cos 45° = 0.71),
+  // and short endpoints (length 0.7) with a = 0 and 1.
+  const Vec3 side{1, 0, 0};
+  for (const double shin : shins) {
+    directed.push_back(pixel(up, side, 0.5, up, up, shin));
+    directed.push_back(pixel(0.7 * up, 0.7 * up, 0.0, up, up, shin));
+    directed.push_back(pixel(0.7 * side, 0.8 * up, 1.0, side, side, shin));
+  }
+
+  // Random: half plausible geometry near the mirror direction, half arbitrary bits.
+  const FieldRandom bits(model.inputs());
+  auto random = [f, bits](std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) {
+    Rng rng(seed, kStimulusStream, index);
+    if (rng.below(2) == 0) {
+      bits(rng, in);
+      return;
+    }
+    const auto p = quantize_lyon_pixel(random_lyon_pixel(rng, f), f);
+    std::copy(p.begin(), p.end(), in.begin());
+  };
+  return Stimulus(model, std::move(directed), random);
+}
+
+// ---- analysis ----
+namespace {
+
+double length_of(const Vec3Fx& v) {
+  double sum = 0;
+  for (const auto& c : v) sum += c.real() * c.real();
+  return std::sqrt(sum);
+}
+
+Vec3 real_vec(std::span<const std::int64_t> raw, fx::Format fmt) {
+  return {fx::to_real(raw[0], fmt), fx::to_real(raw[1], fmt), fx::to_real(raw[2], fmt)};
+}
+
+}  // namespace
+
+std::vector<LyonNormRow> lyon_norm_table(const LyonModel& model) {
+  const LyonFormats& f = model.formats();
+  std::vector<LyonNormRow> rows;
+  for (int i = 0; i <= 6; ++i) {
+    LyonNormRow r;
+    r.length = 0.70 + 0.05 * i;
+    r.g1 = lyon::normalized_length(r.length, 1);
+    r.g2 = lyon::normalized_length(r.length, 2);
+    // N0 = N1 = length·(0.6, 0, 0.8) (a 3-4-5 direction), a = 0: N' is that vector.
+    const Vec3 n{0.6 * r.length, 0, 0.8 * r.length};
+    const LyonPixel p{n, n, 0, {0, 0, 1}, {0, 0, 1}, 1};
+    const auto raw = quantize_lyon_pixel(p, f);
+    const LyonStages s =
+        model.stages({raw[0], raw[1], raw[2]}, {raw[3], raw[4], raw[5]}, raw[6],
+                     {raw[7], raw[8], raw[9]}, {raw[10], raw[11], raw[12]}, raw[13]);
+    r.fixed = length_of(s.n.out);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::vector<LyonShapeRow> lyon_shape_table() {
+  std::vector<LyonShapeRow> rows;
+  for (const double n : {1.0, 4.0, 16.0, 64.0, 100.0, 256.0, 1000.0}) {
+    LyonShapeRow r;
+    r.n = n;
+    for (int k = 0; k <= 3; ++k) r.max_error[k] = lyon::max_shape_error(n, k);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples, std::uint64_t seed,
+                                  bool exact_inputs) {
+  const LyonFormats& f = model.formats();
+  const lyon::DatapathParams params{f.halfway, f.norm, f.h_norm, f.k};
+  const double spec_lsb = std::ldexp(1.0, -f.spec.frac_bits);
+  const double diff_lsb = std::ldexp(1.0, -f.diff.frac_bits);
+  LyonOutputError e;
+  e.samples = samples;
+  double spec_sum = 0;
+  double diff_sum = 0;
+  for (std::uint64_t i = 0; i < samples; ++i) {
+    Rng rng(seed, kStimulusStream, i);
+    const LyonPixel pixel = random_lyon_pixel(rng, f);
+    const auto raw = quantize_lyon_pixel(pixel, f);
+    const LyonStages s =
+        model.stages({raw[0], raw[1], raw[2]}, {raw[3], raw[4], raw[5]}, raw[6],
+                     {raw[7], raw[8], raw[9]}, {raw[10], raw[11], raw[12]}, raw[13]);
+    // The float datapath sees exactly the quantized inputs: the error is the unit's own.
+    const std::span<const std::int64_t> in(raw);
+    const double shin = fx::to_real(raw[13], f.shin);
+    const double n = f.arrangement == 8 ? shin * shin : shin;
+    const lyon::DatapathOut ref =
+        exact_inputs
+            ? lyon::datapath(pixel.n0, pixel.n1, pixel.a, pixel.v, pixel.l, n, params)
+            : lyon::datapath(real_vec(in.subspan(0, 3), f.vec), real_vec(in.subspan(3, 3), f.vec),
+                             fx::to_real(raw[6], f.a), real_vec(in.subspan(7, 3), f.vec),
+                             real_vec(in.subspan(10, 3), f.vec), n, params);
+    const double spec_err = std::abs(s.spec.real() - ref.spec) / spec_lsb;
+    const double diff_err = std::abs(s.diff.real() - ref.diff) / diff_lsb;
+    e.spec_max = std::max(e.spec_max, spec_err);
+    if ((f.arrangement == 8 ? shin * shin : shin) <= 256) {
+      e.spec_max_low_n = std::max(e.spec_max_low_n, spec_err);
+    }
+    e.diff_max = std::max(e.diff_max, diff_err);
+    spec_sum += spec_err;
+    diff_sum += diff_err;
+    if (ref.spec >= spec_lsb) ++e.spec_nonzero;
+  }
+  e.spec_mean = spec_sum / static_cast<double>(samples);
+  e.diff_mean = diff_sum / static_cast<double>(samples);
+  return e;
+}
+
+std::string lyon_stage_formats(const LyonModel& model) {
+  const LyonFormats& f = model.formats();
+  const LyonStages s = model.stages({0, 0, 0}, {0, 0, 0}, 0, {0, 0, 0}, {0, 0, 0}, 0);
+  std::string out;
+  const auto row = [&out](std::string_view stage, std::string_view signal, fx::Format fmt) {
+    out += fmt::format("  {:<6} {:<28} {:>8} {:>3} bits\n", stage, signal, fmt.str(), fmt.width());
+  };
+  row("in", "N0, N1, V, L components", f.vec);
+  row("in", "a", f.a);
+  row("in", f.arrangement == 7 ? "n" : "m", f.shin);
+  row("2", "N'", s.np[0].fmt);
+  if (f.norm > 0) {
+    row("3", "z = N'.N'", s.n.z.fmt);
+    row("4", "y = 1 - z", s.n.y.fmt);
+    row("4", f.norm == 1 ? "g1 = 1 + y/2" : "g2 = 1 + (y + y^2)/2", s.n.g.fmt);
+  }
+  row("5", "N", s.n.out[0].fmt);
+  if (f.halfway) {
+    row("2", "H = (L + V)/2", s.h[0].fmt);
+    row("5", f.h_norm == 0 ? "H (requantized)" : "H normalized", s.hn.out[0].fmt);
+  }
+  row("6", f.halfway ? "H.N" : "N.V", s.dot.fmt);
+  row("6", "diff = N.L", s.diff.fmt);
+  row("7", f.halfway ? "(H.N)N" : "R = 2(N.V)N - V", s.r[0].fmt);
+  row("8", "D", s.d[0].fmt);
+  if (f.arrangement == 7) {
+    row("9", "D.D", s.dd.fmt);
+  } else {
+    row("9", "|D|", s.dabs[0].fmt);
+    row("9", "w = m|D|/2^s (squarer input)", s.w[0].fmt);
+  }
+  row("10", "x/2^k (exact)", s.xk.fmt);
+  row("10", "x/2^k (requantized)", s.xf.fmt);
+  row("11", "t = 1 - x/2^k", s.sq[0].fmt);
+  for (int j = 1; j <= f.k; ++j)
+    row(std::to_string(11 + j), fmt::format("t^{}", 1 << j), s.sq[j].fmt);
+  row("out", "spec", s.spec.fmt);
+  return out;
+}
+
+// ---- registry entry ----
+namespace {
+
+std::unique_ptr<PipelineModel> make_model(const Config& cfg) {
+  const LyonFormats formats = LyonFormats::from_config(cfg);
+  try {
+    return std::make_unique<LyonModel>(formats);
+  } catch (const Error& e) {
+    cfg.fail(e.what());
+  }
+}
+
+Stimulus make_stimulus(const PipelineModel& model, const Config&) {
+  return make_lyon_stimulus(model);
+}
+
+int latency(const Config& cfg) { return LyonModel(LyonFormats::from_config(cfg)).latency(); }
+
+ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
+  const LyonModel model(LyonFormats::from_config(cfg));
+  const LyonOutputError l = lyon_output_error(model, samples, seed, /*exact_inputs=*/true);
+  ModelError e;
+  e.max_lsb = l.spec_max;
+  e.mean_lsb = l.spec_mean;
+  e.max_abs = l.spec_max * std::ldexp(1.0, -model.formats().spec.frac_bits);
+  e.samples = l.samples;
+  return e;
+}
+
+void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
+             std::FILE* out) {
+  std::vector<LyonModel> models;
+  for (const Config& cfg : configs) models.emplace_back(LyonFormats::from_config(cfg));
+  // The normalization table uses the first configuration that normalizes N.
+  std::size_t norm = 0;
+  while (norm + 1 < models.size() && models[norm].formats().norm == 0) ++norm;
+  const LyonModel& nm = models[norm];
+  fmt::print(out, "Approximate normalization: length of a vector after g (Lyon, Fig. 4)\n");
+  fmt::print(out, "  {:>6}  {:>10}  {:>10}  {:>10}   fixed: {} (g{})\n", "length", "g1 float",
+             "g2 float", "fixed", configs[norm].name(), nm.formats().norm);
+  for (const auto& r : lyon_norm_table(nm)) {
+    fmt::print(out, "  {:>6.2f}  {:>10.5f}  {:>10.5f}  {:>10.5f}\n", r.length, r.g1, r.g2, r.fixed);
+  }
+  fmt::print(out, "  at y = 1/2 (length 0.7071): g1 = {}, g2 = {}, exact 1/sqrt(1/2) = {:.4f}\n\n",
+             lyon::g1(0.5), lyon::g2(0.5), 1 / std::sqrt(0.5));
+
+  fmt::print(out,
+             "Shape function: max over alpha of |f_k(x) - cos^n alpha|, x = (n/2)|D|^2, float\n");
+  fmt::print(out, "  {:>6}  {:>9}  {:>9}  {:>9}  {:>9}\n", "n", "k=0", "k=1", "k=2", "k=3");
+  for (const auto& r : lyon_shape_table()) {
+    fmt::print(out, "  {:>6}  {:>9.6f}  {:>9.6f}  {:>9.6f}  {:>9.6f}\n", r.n, r.max_error[0],
+               r.max_error[1], r.max_error[2], r.max_error[3]);
+  }
+  fmt::print(out,
+             "\nFixed-point output against the float datapath (same quantized inputs), in output "
+             "LSBs; {} random pixels, seed {}\n",
+             samples, seed);
+  fmt::print(out, "  {:<14} {:>9} {:>13} {:>9} {:>9} {:>9} {:>11}\n", "config", "spec max",
+             "max n<=256", "spec mean", "diff max", "diff mean", "highlights");
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    const LyonOutputError e = lyon_output_error(models[i], samples, seed);
+    fmt::print(out, "  {:<14} {:>9.2f} {:>13.2f} {:>9.3f} {:>9.2f} {:>9.3f} {:>10.1f}%\n",
+               configs[i].name(), e.spec_max, e.spec_max_low_n, e.spec_mean, e.diff_max,
+               e.diff_mean,
+               100.0 * static_cast<double>(e.spec_nonzero) / static_cast<double>(e.samples));
+  }
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    fmt::print(out, "\nStage formats of {} ({}, latency {} cycles)\n{}", configs[i].origin(),
+               configs[i].description(), models[i].latency(), lyon_stage_formats(models[i]));
+  }
+}
+
+}  // namespace
+
+const PipelineInfo& lyon_pipeline() {
+  static const PipelineInfo info{
+      .name = "lyon",
+      .summary = "Lyon specular unit: LIRP, g1/g2 normalization, D, x, f_k (Figs. 7, 8), diffuse",
+      .top = "lyon_top",
+      .rtl_files = {"rtl/common", "rtl/lirp/lirp_core.sv", "rtl/lyon/lyon_dot3.sv",
+                    "rtl/lyon/lyon_norm.sv", "rtl/lyon/lyon_x.sv", "rtl/lyon/lyon_shape.sv",
+                    "rtl/lyon/lyon_top.sv"},
+      .ports = {{"in_n0_i", true, {"n0_x", "n0_y", "n0_z"}},
+                {"in_n1_i", true, {"n1_x", "n1_y", "n1_z"}},
+                {"in_a_i", true, {"a"}},
+                {"in_v_i", true, {"v_x", "v_y", "v_z"}},
+                {"in_l_i", true, {"l_x", "l_y", "l_z"}},
+                {"in_shin_i", true, {"shin"}},
+                {"out_spec_o", false, {"spec"}},
+                {"out_diff_o", false, {"diff"}}},
+      .make_model = make_model,
+      .make_stimulus = make_stimulus,
+      .independent_vectors = true,
+      .default_vectors = 1000000,
+      .latency = latency,
+      .one_per_clock = true,
+      .float_error = float_error,
+      .analyze = analyze,
+      .mutants = {{"lyon-g2", "default", "rtl/lyon/lyon_norm.sv", "if (en_i[1]) g_q <= g_d;",
+                   "if (en_i[1]) g_q <= g_d + 1'b1;", "g2 one LSB too large"},
+                  {"lyon-square", "default", "rtl/lyon/lyon_shape.sv",
+                   ".OutFmt  (SqFmt),\n      .Round   (Round),",
+                   ".OutFmt  (SqFmt),\n      .Round   (fx_pkg::FxTruncate),",
+                   "shape-function squarers truncate instead of rounding to even (one LSB)"},
+                  {"lyon-compare", "default", "rtl/lyon/lyon_x.sv",
+                   "assign zero_d = |xk[XkW-1:XkFrac];", "assign zero_d = |xk[XkW-1:XkFrac-1];",
+                   "comparator fires at x/2^k >= 1/2 instead of >= 1"},
+                  {"lyon-fig8-w", "fig8_k1", "rtl/lyon/lyon_x.sv",
+                   ".OutFmt  (WFmt),\n        .Round   (Round),",
+                   ".OutFmt  (WFmt),\n        .Round   (fx_pkg::FxTruncate),",
+                   "Fig. 8 squarer inputs truncated instead of rounded (one LSB)"},
+                  {"lyon-sqrt2", "fig8_k2", "rtl/lyon/lyon_x.sv",
+                   "localparam int unsigned S         = (K + 2) / 2;",
+                   "localparam int unsigned S         = (K + 1) / 2;",
+                   "Fig. 8 shift without the even-k sqrt(2) correction"},
+                  {"lyon-halfway", "halfway", "rtl/lyon/lyon_top.sv",
+                   ".b_i  (vl_q1[c*VecW+:VecW]),", ".b_i  (vl_q1[3*VecW+c*VecW+:VecW]),",
+                   "H = (L + L)/2 instead of (L + V)/2"},
+                  {"lyon-diffuse-delay", "default", "rtl/lyon/lyon_top.sv",
+                   "pipe_delay #(.Width(DiffW), .Depth(Depth - 7))",
+                   "pipe_delay #(.Width(DiffW), .Depth(Depth - 8))",
+                   "diffuse term one stage short: paired with the wrong pixel"}},
+  };
+  return info;
+}
+
+}  // namespace phongsim

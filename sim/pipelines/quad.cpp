@@ -1,0 +1,301 @@
+// The quadratic colour interpolator's registry entry, stimulus and analysis.
+#include "sim/pipelines/quad.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/error.h"
+#include "model/quad.h"
+#include "model/quad_setup.h"
+
+namespace phongsim {
+
+QuadMode quad_mode(const Config& cfg) {
+  return cfg.setup("mode", {"quadratic", "linear"}) == "linear" ? QuadMode::linear
+                                                                : QuadMode::quadratic;
+}
+
+quad::SubpixelTri random_triangle(Rng& rng, int sub_bits) {
+  const double max_side = rng.below(128) == 0 ? 1024.0 : 64.0;
+  const double w = std::exp(rng.uniform() * std::log(max_side));
+  const double h = rng.below(4) == 0 ? std::exp(rng.uniform() * std::log(max_side)) : w;
+  const double x = rng.uniform() * (2048 - w);
+  const double y = rng.uniform() * (2048 - h);
+  std::array<quad::Vertex2, 3> v;
+  for (auto& p : v) p = {x + rng.uniform() * w, y + rng.uniform() * h};
+  if (rng.below(32) == 0) v[2] = {(v[0].x + v[1].x) / 2, (v[0].y + v[1].y) / 2};  // collinear
+  quad::SubpixelTri tri = quad::quantize(v[0], v[1], v[2], sub_bits);
+  if (rng.below(2) == 0) tri = quad::reversed(tri);
+  return tri;
+}
+
+quad::Coeffs random_colour(Rng& rng, QuadMode mode) {
+  const auto sample = [&rng]() {
+    return rng.below(8) == 0 ? 1.4 * rng.uniform() - 0.2 : rng.uniform();
+  };
+  if (mode == QuadMode::linear) return quad::linear_coefficients(sample(), sample(), sample());
+  quad::Samples r;
+  for (auto& x : r) x = sample();
+  return quad::coefficients(r);
+}
+
+Stimulus make_quad_stimulus(const PipelineModel& model, QuadMode mode) {
+  const auto& qm = dynamic_cast<const QuadModel&>(model);
+  const QuadFormats f = qm.formats();
+  const int s = f.sub_bits;
+  const auto tri = [s](double x0, double y0, double x1, double y1, double x2, double y2) {
+    return quad::quantize({x0, y0}, {x1, y1}, {x2, y2}, s);
+  };
+  const auto flat = [](double v) { return quad::linear_coefficients(v, v, v); };
+  std::vector<std::vector<std::int64_t>> directed;
+  const auto add = [&](const quad::SubpixelTri& t, const std::array<quad::Coeffs, 3>& colour) {
+    directed.push_back(QuadModel::words(quad_program(t, colour, f)));
+  };
+  const std::array<quad::Coeffs, 3> grey{flat(0.5), flat(0.25), flat(0.75)};
+  const std::array<quad::Coeffs, 3> ramp{quad::linear_coefficients(0, 1, 0.5),
+                                         quad::linear_coefficients(1, 0, 0.5),
+                                         quad::coefficients({0, 1, 0, 1, 0, 1})};
+  const std::array<quad::Coeffs, 3> outside{flat(-0.3), flat(1.3), flat(1.0)};  // clamp corners
+  // One pixel; vertices on pixel centres (top-left ties on every edge); both windings.
+  add(tri(10.2, 10.2, 10.9, 10.3, 10.4, 10.9), grey);
+  add(tri(20.5, 20.5, 30.5, 20.5, 20.5, 30.5), ramp);
+  add(tri(20.5, 20.5, 20.5, 30.5, 30.5, 20.5), ramp);
+  add(tri(40.5, 40.5, 50.5, 50.5, 40.5, 50.5), ramp);
+  // A 1024 x 1024 right triangle, a sliver, a degenerate triangle, the screen's far corner.
+  add(tri(0, 0, 1024, 0, 0, 1024), ramp);
+  add(tri(100, 100, 900, 103, 100, 101), ramp);
+  add(tri(5, 5, 10, 10, 15, 15), grey);
+  add(tri(2040, 2040, 2048, 2047, 2043, 2048), outside);
+  add(tri(60, 60, 70, 62, 61, 75), outside);
+
+  // Random: three quarters through the setup, one quarter arbitrary words over a small box.
+  const FieldRandom bits(model.inputs());
+  auto random = [f, mode, bits](std::uint64_t seed, std::uint64_t index,
+                                std::span<std::int64_t> in) {
+    Rng rng(seed, kStimulusStream, index);
+    if (rng.below(4) == 0) {
+      bits(rng, in);
+      in[0] = static_cast<std::int64_t>(rng.below(2016));  // box up to 32 x 32 pixels
+      in[1] = static_cast<std::int64_t>(rng.below(2016));
+      in[2] = in[0] + static_cast<std::int64_t>(rng.below(32));
+      in[3] = in[1] + static_cast<std::int64_t>(rng.below(32));
+      return;
+    }
+    const quad::SubpixelTri t = random_triangle(rng, f.sub_bits);
+    std::array<quad::Coeffs, 3> colour;
+    for (auto& c : colour) c = random_colour(rng, mode);
+    const auto w = QuadModel::words(quad_program(t, colour, f));
+    std::copy(w.begin(), w.end(), in.begin());
+  };
+  return Stimulus(model, std::move(directed), random);
+}
+
+// ---- analysis ----
+namespace {
+
+struct Walked {
+  std::vector<std::int64_t> pixels;  // x, y, r, g, b per covered pixel
+  std::vector<std::int64_t> acc;     // the three accumulators per covered pixel
+};
+
+// Walks `tri` with `colour` through `m` and calls visit(walked, pixel, channel, r(s, t)) for every
+// covered pixel and channel, r evaluated directly at the pixel's centre (eqs. 4.1, 4.3).
+template <class Visit>
+void walk_with_direct(const QuadModel& m, const quad::SubpixelTri& tri,
+                      const std::array<quad::Coeffs, 3>& colour, Visit visit) {
+  Walked w;
+  (void)m.walk(quad_program(tri, colour, m.formats()), w.pixels, &w.acc);
+  const auto v = quad::to_pixels(tri);
+  for (std::size_t i = 0; i < w.pixels.size() / 5; ++i) {
+    const quad::St st = quad::st_at(v[0], v[1], v[2],
+                                    {static_cast<double>(w.pixels[5 * i]) + 0.5,
+                                     static_cast<double>(w.pixels[5 * i + 1]) + 0.5});
+    for (int ch = 0; ch < 3; ++ch) visit(w, i, ch, quad::eval_st(colour[ch], st));
+  }
+}
+
+}  // namespace
+
+double quad_drift(int size, int guard_bits, fx::Format out, int triangles, std::uint64_t seed) {
+  QuadFormats f;
+  f.acc = fx::Format{true, 2, out.frac_bits + guard_bits};
+  f.out = out;
+  f.sub_bits = 4;
+  const QuadModel m(f);
+  const double lsb = std::ldexp(1.0, -out.frac_bits);
+  const auto clamp01 = [](double x) { return std::clamp(x, 0.0, 1.0); };
+  double worst = 0;
+  for (int n = 0; n < triangles; ++n) {
+    Rng rng(seed, kStimulusStream, static_cast<std::uint64_t>(n));
+    const double x = rng.uniform() * (2048 - size);
+    const double y = rng.uniform() * (2048 - size);
+    std::array<quad::Vertex2, 3> v;
+    for (auto& p : v) p = {x + rng.uniform() * size, y + rng.uniform() * size};
+    const quad::SubpixelTri tri = quad::quantize(v[0], v[1], v[2], f.sub_bits);
+    if (quad::orientation(tri) == 0) continue;
+    std::array<quad::Coeffs, 3> colour;
+    for (auto& c : colour) c = random_colour(rng, QuadMode::quadratic);
+    walk_with_direct(m, tri, colour, [&](const Walked& w, std::size_t i, int ch, double exact) {
+      const double got = clamp01(fx::to_real(w.acc[3 * i + ch], f.acc));
+      worst = std::max(worst, std::abs(got - clamp01(exact)) / lsb);
+    });
+  }
+  return worst;
+}
+
+QuadOutputError quad_output_error(const QuadFormats& f, QuadMode mode, int triangles,
+                                  std::uint64_t seed) {
+  const QuadModel m(f);
+  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
+  const double top = fx::to_real(f.out.max_raw(), f.out);
+  QuadOutputError e;
+  double sum = 0;
+  for (int n = 0; n < triangles; ++n) {
+    Rng rng(seed, kStimulusStream, static_cast<std::uint64_t>(n));
+    const quad::SubpixelTri tri = random_triangle(rng, f.sub_bits);
+    std::array<quad::Coeffs, 3> colour;
+    for (auto& c : colour) c = random_colour(rng, mode);
+    walk_with_direct(m, tri, colour, [&](const Walked& w, std::size_t i, int ch, double exact) {
+      // Clamped to what the output can hold: 0.8 tops out at 255/256, not 1.
+      const double d =
+          std::abs(fx::to_real(w.pixels[5 * i + 2 + ch], f.out) - std::clamp(exact, 0.0, top)) /
+          lsb;
+      e.max = std::max(e.max, d);
+      sum += d;
+      ++e.pixels;
+    });
+  }
+  e.mean = e.pixels == 0 ? 0 : sum / static_cast<double>(e.pixels);
+  return e;
+}
+
+// ---- registry entry ----
+namespace {
+
+std::unique_ptr<PipelineModel> make_model(const Config& cfg) {
+  const QuadFormats formats = QuadFormats::from_config(cfg);
+  (void)quad_mode(cfg);  // the stimulus reads it; check it here
+  cfg.check_all_used();
+  return std::make_unique<QuadModel>(formats);
+}
+
+Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
+  return make_quad_stimulus(model, quad_mode(cfg));
+}
+
+int latency(const Config&) { return 4; }  // program to its first pixel (docs/quad.md)
+
+// Random triangles of the configuration's mode through the model, against direct evaluation.
+ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
+  const QuadFormats f = QuadFormats::from_config(cfg);
+  ModelError e;
+  int triangles = 0;
+  double mean_sum = 0;
+  while (e.samples < samples && triangles < 100000) {
+    const QuadOutputError q = quad_output_error(f, quad_mode(cfg), 10, seed + triangles);
+    triangles += 10;
+    e.max_lsb = std::max(e.max_lsb, q.max);
+    mean_sum += q.mean * static_cast<double>(q.pixels);
+    e.samples += q.pixels;
+  }
+  e.mean_lsb = e.samples == 0 ? 0 : mean_sum / static_cast<double>(e.samples);
+  e.max_abs = e.max_lsb * std::ldexp(1.0, -f.out.frac_bits);
+  return e;
+}
+
+void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
+             std::FILE* out) {
+  const int triangles = static_cast<int>(std::max<std::uint64_t>(1, samples / 5000));
+  const fx::Format out_fmt{false, 0, 8};
+  const int sizes[] = {16, 64, 256, 1024};
+  const int guards[] = {0, 4, 8, 12, 16, 20, 24, 40};
+  fmt::print(out,
+             "Drift: max |accumulator - r(s, t) evaluated directly (eqs. 4.1, 4.3)|, both clamped "
+             "to [0, 1], in LSBs of an 8-bit output; {} random triangles with vertices in a "
+             "size x size box per cell, quadratic colours, seed {}\n",
+             triangles, seed);
+  fmt::print(out, "  {:>5}", "size");
+  for (const int g : guards) fmt::print(out, " {:>9}", fmt::format("G={}", g));
+  fmt::print(out, "\n");
+  for (const int size : sizes) {
+    fmt::print(out, "  {:>5}", size);
+    for (const int g : guards) {
+      fmt::print(out, " {:>9.4f}", quad_drift(size, g, out_fmt, triangles, seed));
+    }
+    fmt::print(out, "\n");
+  }
+  fmt::print(out,
+             "\nGuard bits for a drift of at most 1/2 output LSB over a box: analytic bound "
+             "G >= log2(1 + (w-1)^2 + (w-1)(h-1) + (h-1)^2), and the smallest G that met it on "
+             "the triangles above\n");
+  fmt::print(out, "  {:>5} {:>9} {:>9}\n", "size", "analytic", "measured");
+  for (const int size : sizes) {
+    int measured = 0;
+    while (measured < 40 && quad_drift(size, measured, out_fmt, triangles, seed) > 0.5) ++measured;
+    fmt::print(out, "  {:>5} {:>9} {:>9}\n", size, quad_guard_bits_needed(size, size), measured);
+  }
+  fmt::print(out,
+             "\nOutput against direct evaluation, per configuration: |output - r(s, t)|, r "
+             "clamped to the output range, in output LSBs over {} random triangles of the "
+             "co-simulation's distribution (boxes up to 1024 pixels), colours of the "
+             "configuration's [setup] mode, seed {}\n",
+             triangles * 10, seed);
+  fmt::print(out, "  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9} {:>9}\n", "config", "mode", "acc", "out",
+             "pixels", "max", "mean");
+  for (const Config& cfg : configs) {
+    const QuadFormats f = QuadFormats::from_config(cfg);
+    const QuadMode mode = quad_mode(cfg);
+    const QuadOutputError e = quad_output_error(f, mode, triangles * 10, seed);
+    fmt::print(out, "  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9.4f} {:>9.4f}\n", cfg.name(),
+               mode == QuadMode::linear ? "linear" : "quadratic", f.acc.str(), f.out.str(),
+               e.pixels, e.max, e.mean);
+  }
+}
+
+}  // namespace
+
+const PipelineInfo& quad_pipeline() {
+  static const PipelineInfo info{
+      .name = "quad",
+      .summary = "Quadratic/linear colour interpolator: triangle walker, forward differencing",
+      .top = "quad_walker",
+      .rtl_files = {"rtl/common", "rtl/quad/quad_channel.sv", "rtl/quad/quad_walker.sv"},
+      .ports = {{"in_bbox_i", true, {"x0", "y0", "x1", "y1"}},
+                {"in_edge0_i", true, {"e0_kind", "e0_q", "e0_r", "e0_d", "e0_dq", "e0_dr"}},
+                {"in_edge1_i", true, {"e1_kind", "e1_q", "e1_r", "e1_d", "e1_dq", "e1_dr"}},
+                {"in_edge2_i", true, {"e2_kind", "e2_q", "e2_r", "e2_d", "e2_dq", "e2_dr"}},
+                {"in_red_i", true, {"r_f", "r_gy", "r_gx", "r_a", "r_b", "r_c"}},
+                {"in_green_i", true, {"g_f", "g_gy", "g_gx", "g_a", "g_b", "g_c"}},
+                {"in_blue_i", true, {"b_f", "b_gy", "b_gx", "b_a", "b_b", "b_c"}},
+                {"out_x_o", false, {"x"}},
+                {"out_y_o", false, {"y"}},
+                {"out_rgb_o", false, {"r", "g", "b"}}},
+      .make_model = make_model,
+      .make_stimulus = make_stimulus,
+      .independent_vectors = true,
+      // Vectors are triangle programs, about a hundred pixels each on average.
+      .default_vectors = 10000,
+      .latency = latency,
+      // One cycle per row on span set-up: below one pixel per clock by design (docs/quad.md).
+      .one_per_clock = false,
+      .float_error = float_error,
+      .analyze = analyze,
+      .mutants = {{"quad-fill", "default", "rtl/quad/quad_walker.sv",
+                   "assign carry = sum >= {1'b0, d_q};", "assign carry = sum > {1'b0, d_q};",
+                   "edge DDA carries one remainder step late: spans off by a pixel"},
+                  {"quad-jump", "default", "rtl/quad/quad_channel.sv",
+                   "assign f_start = col_f + k_ext * g0_q + a_q * k_km1;",
+                   "assign f_start = col_f + k_ext * g0_q;",
+                   "row start forgets the quadratic term a·k(k-1)"},
+                  {"quad-column", "default", "rtl/quad/quad_channel.sv",
+                   "    .d2_step_i(c_q << 1),", "    .d2_step_i(c_q),",
+                   "column second difference c instead of 2c"},
+                  {"quad-clip", "default", "rtl/quad/quad_walker.sv", "{1'b0}}, x0_q});",
+                   "{1'b0}}, x0_q}) - 1;", "span not clipped to the box on the left"}},
+  };
+  return info;
+}
+
+}  // namespace phongsim

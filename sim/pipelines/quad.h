@@ -1,0 +1,57 @@
+// The quadratic colour interpolator in the registry (sim/pipelines/quad.cpp): its stimulus
+// (random triangles through the setup, every size from slivers and one-pixel triangles to
+// 1024-pixel boxes, both windings, colours that leave [0, 1] now and then; arbitrary program
+// words over small boxes; directed corner cases) and `phongsim analyze quad` (accumulated
+// forward-differencing drift of the walker against direct evaluation of eq. 4.1 with eq. 4.3's
+// (s, t), by triangle size and guard bits).
+#pragma once
+
+#include <cstdint>
+
+#include "base/rng.h"
+#include "model/fixed.h"
+#include "model/quad.h"
+#include "model/quad_setup.h"
+#include "ref/quad_float.h"
+#include "sim/cosim/stimulus.h"
+#include "sim/pipelines/registry.h"
+
+namespace phongsim {
+
+[[nodiscard]] const PipelineInfo& quad_pipeline();
+
+// [setup] mode: quadratic (six samples per channel) or linear (three vertex values).
+[[nodiscard]] QuadMode quad_mode(const Config& cfg);
+
+// A random triangle in subpixel units within the screen: box side log-uniform up to 64 pixels,
+// one time in 128 up to 1024; one in 32 degenerate (collinear); random winding.
+[[nodiscard]] quad::SubpixelTri random_triangle(Rng& rng, int sub_bits);
+
+// Random colour coefficients for one channel: quadratic from six samples in [-0.2, 1.2] (mostly
+// in [0, 1]), or linear from three.
+[[nodiscard]] quad::Coeffs random_colour(Rng& rng, QuadMode mode);
+
+[[nodiscard]] Stimulus make_quad_stimulus(const PipelineModel& model, QuadMode mode);
+
+// ---- analysis ----
+
+// Largest |clamp(accumulator) - clamp(r(s, t))| (clamp to [0, 1], before the output rounding)
+// over every covered pixel and channel of `triangles` random triangles with vertices in a
+// `size` x `size` box (quadratic colours from six samples in [0, 1]), in LSBs of `out`, for an
+// accumulator with `guard_bits` fraction bits below out's LSB and two integer bits.
+[[nodiscard]] double quad_drift(int size, int guard_bits, fx::Format out, int triangles,
+                                std::uint64_t seed);
+
+// A configuration's output against direct evaluation: |output - r(s, t)|, r clamped to the
+// output's range [0, max], in output LSBs
+// over every covered pixel and channel of `triangles` random triangles (random_triangle: every
+// size up to 1024-pixel boxes) with random colours of `mode`.
+struct QuadOutputError {
+  double max = 0;
+  double mean = 0;
+  std::uint64_t pixels = 0;
+};
+[[nodiscard]] QuadOutputError quad_output_error(const QuadFormats& formats, QuadMode mode,
+                                                int triangles, std::uint64_t seed);
+
+}  // namespace phongsim
