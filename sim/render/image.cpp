@@ -1,7 +1,7 @@
 #include "sim/render/image.h"
 
 #include <fmt/format.h>
-#include <zlib.h>
+#include <png.h>
 
 #include <algorithm>
 #include <array>
@@ -12,8 +12,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
+#include <memory>
+#include <string_view>
+#include <vector>
 
 #include "base/error.h"
 #include "base/output_file.h"
@@ -51,129 +52,20 @@ void fill_rect(Image& img, int x, int y, int w, int h, Rgb8 colour) {
   }
 }
 
-// ---- PNG ----
+// ---- PNG (libpng's simplified API: no setjmp, errors in png_image::message) ----
 
 namespace {
 
-constexpr std::array<std::uint8_t, 8> kPngSignature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-constexpr int kBytesPerPixel = 3;
-// IDAT payloads are split so no chunk approaches the 2^31 - 1 length limit.
-constexpr std::size_t kIdatChunk = std::size_t{1} << 16;
+static_assert(sizeof(Rgb8) == 3, "Image pixels are handed to libpng as packed RGB bytes");
 
-void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
-  out.push_back(static_cast<std::uint8_t>(v >> 24));
-  out.push_back(static_cast<std::uint8_t>(v >> 16));
-  out.push_back(static_cast<std::uint8_t>(v >> 8));
-  out.push_back(static_cast<std::uint8_t>(v));
-}
-
-std::uint32_t get_u32(const std::uint8_t* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
-         std::uint32_t{p[3]};
-}
-
-// The CRC covers the chunk type and data, not the length.
-void put_chunk(std::vector<std::uint8_t>& out, const char (&type)[5], const std::uint8_t* data,
-               std::size_t size) {
-  put_u32(out, static_cast<std::uint32_t>(size));
-  const std::size_t type_at = out.size();
-  out.insert(out.end(), type, type + 4);
-  out.insert(out.end(), data, data + size);
-  const auto crc = crc32(0L, out.data() + type_at, static_cast<uInt>(4 + size));
-  put_u32(out, static_cast<std::uint32_t>(crc));
-}
-
-std::uint8_t paeth(int a, int b, int c) {
-  const int p = a + b - c;
-  const int pa = std::abs(p - a);
-  const int pb = std::abs(p - b);
-  const int pc = std::abs(p - c);
-  if (pa <= pb && pa <= pc) return static_cast<std::uint8_t>(a);
-  return static_cast<std::uint8_t>(pb <= pc ? b : c);
-}
-
-// The filtered byte of `type` for raw byte i of `row`, given the previous raw row (zeros for
-// the first row). Bytes left of the row count as zero.
-std::uint8_t filter_byte(int type, const std::uint8_t* row, const std::uint8_t* prev,
-                         std::size_t i) {
-  const int x = row[i];
-  const int a = i >= kBytesPerPixel ? row[i - kBytesPerPixel] : 0;
-  const int b = prev[i];
-  const int c = i >= kBytesPerPixel ? prev[i - kBytesPerPixel] : 0;
-  switch (type) {
-    case 0:
-      return static_cast<std::uint8_t>(x);
-    case 1:
-      return static_cast<std::uint8_t>(x - a);
-    case 2:
-      return static_cast<std::uint8_t>(x - b);
-    case 3:
-      return static_cast<std::uint8_t>(x - (a + b) / 2);
-    default:
-      return static_cast<std::uint8_t>(x - paeth(a, b, c));
-  }
-}
-
-// Scanlines with a filter byte each; the filter per row is the one minimising the sum of the
-// bytes taken as signed values (the usual heuristic: it favours runs of small residues).
-std::vector<std::uint8_t> filtered_scanlines(const Image& img) {
-  const std::size_t stride = static_cast<std::size_t>(img.width()) * kBytesPerPixel;
-  const std::vector<std::uint8_t> zeros(stride, 0);
-  std::vector<std::uint8_t> out;
-  out.reserve((stride + 1) * static_cast<std::size_t>(img.height()));
-  std::vector<std::uint8_t> prev(stride, 0);
-  std::vector<std::uint8_t> row(stride);
-  std::vector<std::uint8_t> best(stride);
-  std::vector<std::uint8_t> trial(stride);
-  for (int y = 0; y < img.height(); ++y) {
-    for (int x = 0; x < img.width(); ++x) {
-      const Rgb8 p = img.at(x, y);
-      row[3 * x] = p.r;
-      row[3 * x + 1] = p.g;
-      row[3 * x + 2] = p.b;
-    }
-    long best_cost = -1;
-    int best_type = 0;
-    for (int type = 0; type <= 4; ++type) {
-      long cost = 0;
-      for (std::size_t i = 0; i < stride; ++i) {
-        trial[i] = filter_byte(type, row.data(), y == 0 ? zeros.data() : prev.data(), i);
-        cost += std::abs(static_cast<int>(static_cast<std::int8_t>(trial[i])));
-      }
-      if (best_cost < 0 || cost < best_cost) {
-        best_cost = cost;
-        best_type = type;
-        best.swap(trial);
-      }
-    }
-    out.push_back(static_cast<std::uint8_t>(best_type));
-    out.insert(out.end(), best.begin(), best.end());
-    prev.swap(row);
-  }
-  return out;
-}
-
-std::vector<std::uint8_t> encode_png(const Image& img) {
-  std::vector<std::uint8_t> out(kPngSignature.begin(), kPngSignature.end());
-  std::vector<std::uint8_t> ihdr;
-  put_u32(ihdr, static_cast<std::uint32_t>(img.width()));
-  put_u32(ihdr, static_cast<std::uint32_t>(img.height()));
-  // Bit depth 8, colour type 2 (RGB), deflate, adaptive filtering, no interlace.
-  ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});
-  put_chunk(out, "IHDR", ihdr.data(), ihdr.size());
-
-  const std::vector<std::uint8_t> raw = filtered_scanlines(img);
-  uLongf size = compressBound(raw.size());
-  std::vector<std::uint8_t> z(size);
-  if (compress2(z.data(), &size, raw.data(), raw.size(), Z_DEFAULT_COMPRESSION) != Z_OK) {
-    throw Error("zlib could not compress the image");
-  }
-  for (std::size_t at = 0; at < size; at += kIdatChunk) {
-    put_chunk(out, "IDAT", z.data() + at, std::min<std::size_t>(kIdatChunk, size - at));
-  }
-  put_chunk(out, "IEND", nullptr, 0);
-  return out;
-}
+// Frees libpng's state however the caller leaves.
+struct PngImage {
+  png_image image{};
+  PngImage() { image.version = PNG_IMAGE_VERSION; }
+  ~PngImage() { png_image_free(&image); }
+  PngImage(const PngImage&) = delete;
+  PngImage& operator=(const PngImage&) = delete;
+};
 
 }  // namespace
 
@@ -183,183 +75,52 @@ void write_png(const Image& img, const std::filesystem::path& path) {
     throw Error(fmt::format("cannot write {}: the image is empty ({}x{})", path.string(),
                             img.width(), img.height()));
   }
-  const std::vector<std::uint8_t> bytes = encode_png(img);
   OutputFile out(path);
-  if (std::fwrite(bytes.data(), 1, bytes.size(), out.get()) != bytes.size()) {
-    throw Error(fmt::format("cannot write {}: {}", path.string(), std::strerror(errno)));
+  PngImage png;
+  png.image.width = static_cast<png_uint_32>(img.width());
+  png.image.height = static_cast<png_uint_32>(img.height());
+  png.image.format = PNG_FORMAT_RGB;
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(img.pixels().data());
+  if (png_image_write_to_stdio(&png.image, out.get(), 0, bytes, 0, nullptr) == 0) {
+    throw Error(fmt::format("cannot write {}: {}", path.string(), png.image.message));
   }
   out.commit();
 }
 
-namespace {
-
-// Reads a PNG held in memory; `fail` formats the file's name into every message.
-class PngDecoder {
- public:
-  PngDecoder(const std::vector<std::uint8_t>& data, std::string name)
-      : data_(data), name_(std::move(name)) {}
-
-  Image decode() {
-    if (data_.size() < kPngSignature.size() ||
-        !std::equal(kPngSignature.begin(), kPngSignature.end(), data_.begin())) {
-      fail("not a PNG file");
-    }
-    pos_ = kPngSignature.size();
-    int width = 0;
-    int height = 0;
-    bool seen_header = false;
-    std::vector<std::uint8_t> idat;
-    for (;;) {
-      const Chunk chunk = next_chunk();
-      if (!seen_header) {
-        if (chunk.type != "IHDR" || chunk.size != 13) fail("the first chunk is not IHDR");
-        seen_header = true;
-        read_header(chunk, width, height);
-      } else if (chunk.type == "IHDR") {
-        fail("a second IHDR chunk");
-      } else if (chunk.type == "IDAT") {
-        idat.insert(idat.end(), chunk.data, chunk.data + chunk.size);
-      } else if (chunk.type == "IEND") {
-        break;
-      } else if (chunk.type != "PLTE" && (chunk.type[0] & 0x20) == 0) {
-        // PLTE is only a suggested palette for RGB; other unknown critical chunks change the
-        // meaning of the image, so they are refused. Ancillary ones are skipped.
-        fail(fmt::format("unsupported critical chunk {}", chunk.type));
-      }
-    }
-    if (idat.empty()) fail("no image data (IDAT)");
-    return unfilter(inflate_all(idat, width, height), width, height);
-  }
-
- private:
-  struct Chunk {
-    std::string type;
-    const std::uint8_t* data = nullptr;
-    std::size_t size = 0;
-  };
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error(fmt::format("cannot read {}: {}", name_, what));
-  }
-
-  Chunk next_chunk() {
-    if (data_.size() - pos_ < 8) fail("truncated (no IEND chunk)");
-    Chunk chunk;
-    const std::uint32_t size = get_u32(&data_[pos_]);
-    if (size > 0x7fffffffu) fail("a chunk length exceeds 2^31 - 1");
-    chunk.type.assign(reinterpret_cast<const char*>(&data_[pos_ + 4]), 4);
-    for (const char c : chunk.type) {
-      if (!std::isalpha(static_cast<unsigned char>(c))) fail("a chunk type is not 4 letters");
-    }
-    if (data_.size() - pos_ - 8 < std::size_t{size} + 4)
-      fail(fmt::format("truncated {} chunk", chunk.type));
-    chunk.data = &data_[pos_ + 8];
-    chunk.size = size;
-    const auto crc = crc32(0L, &data_[pos_ + 4], static_cast<uInt>(size + 4));
-    if (get_u32(&data_[pos_ + 8 + size]) != static_cast<std::uint32_t>(crc)) {
-      fail(fmt::format("CRC mismatch in {} chunk", chunk.type));
-    }
-    pos_ += 12 + std::size_t{size};
-    return chunk;
-  }
-
-  void read_header(const Chunk& chunk, int& width, int& height) const {
-    const std::uint32_t w = get_u32(chunk.data);
-    const std::uint32_t h = get_u32(chunk.data + 4);
-    const int depth = chunk.data[8];
-    const int colour = chunk.data[9];
-    if (w == 0 || h == 0 || w > Image::kMaxSize || h > Image::kMaxSize) {
-      fail(fmt::format("image size {}x{} is out of range (1..{})", w, h, Image::kMaxSize));
-    }
-    if (depth != 8 || colour != 2) {
-      fail(fmt::format("unsupported bit depth {} / colour type {} (only 8-bit RGB is read)", depth,
-                       colour));
-    }
-    if (chunk.data[10] != 0 || chunk.data[11] != 0) fail("unknown compression or filter method");
-    if (chunk.data[12] != 0) fail("interlaced images are not supported");
-    width = static_cast<int>(w);
-    height = static_cast<int>(h);
-  }
-
-  std::vector<std::uint8_t> inflate_all(const std::vector<std::uint8_t>& z, int width,
-                                        int height) const {
-    const std::size_t expected =
-        static_cast<std::size_t>(height) * (1 + static_cast<std::size_t>(width) * kBytesPerPixel);
-    // One spare byte so that excess data is detected rather than silently dropped.
-    std::vector<std::uint8_t> raw(expected + 1);
-    z_stream s{};
-    if (inflateInit(&s) != Z_OK) fail("zlib could not start");
-    s.next_in = const_cast<Bytef*>(z.data());
-    s.avail_in = static_cast<uInt>(z.size());
-    s.next_out = raw.data();
-    s.avail_out = static_cast<uInt>(raw.size());
-    const int rc = inflate(&s, Z_FINISH);
-    const std::size_t produced = s.total_out;
-    inflateEnd(&s);
-    if (rc == Z_DATA_ERROR || rc == Z_NEED_DICT || rc == Z_MEM_ERROR) {
-      fail("corrupt image data");
-    }
-    if (produced > expected) fail("more image data than its size needs");
-    if (rc != Z_STREAM_END || produced < expected) fail("truncated image data");
-    raw.resize(expected);
-    return raw;
-  }
-
-  Image unfilter(std::vector<std::uint8_t> raw, int width, int height) const {
-    const std::size_t stride = static_cast<std::size_t>(width) * kBytesPerPixel;
-    const std::vector<std::uint8_t> zeros(stride, 0);
-    Image img(width, height);
-    for (int y = 0; y < height; ++y) {
-      std::uint8_t* line = &raw[static_cast<std::size_t>(y) * (stride + 1)];
-      const int type = line[0];
-      std::uint8_t* row = line + 1;
-      const std::uint8_t* prev = y == 0 ? zeros.data() : row - (stride + 1);
-      if (type > 4) fail(fmt::format("unknown filter type {} in row {}", type, y));
-      // Reconstruct in place: row[i - 3] is already a raw byte when row[i] is reached.
-      for (std::size_t i = 0; i < stride; ++i) {
-        const int a = i >= kBytesPerPixel ? row[i - kBytesPerPixel] : 0;
-        const int b = prev[i];
-        const int c = i >= kBytesPerPixel ? prev[i - kBytesPerPixel] : 0;
-        int predictor = 0;
-        switch (type) {
-          case 1:
-            predictor = a;
-            break;
-          case 2:
-            predictor = b;
-            break;
-          case 3:
-            predictor = (a + b) / 2;
-            break;
-          case 4:
-            predictor = paeth(a, b, c);
-            break;
-          default:
-            break;
-        }
-        row[i] = static_cast<std::uint8_t>(row[i] + predictor);
-      }
-      for (int x = 0; x < width; ++x) {
-        img.at(x, y) = {row[3 * x], row[3 * x + 1], row[3 * x + 2]};
-      }
-    }
-    return img;
-  }
-
-  const std::vector<std::uint8_t>& data_;
-  std::string name_;
-  std::size_t pos_ = 0;
-};
-
-}  // namespace
-
 Image read_png(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("cannot read {}: {}", path.string(), std::strerror(errno)));
-  std::vector<std::uint8_t> data((std::istreambuf_iterator<char>(in)),
-                                 std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error(fmt::format("cannot read {}: read error", path.string()));
-  return PngDecoder(data, path.string()).decode();
+  const auto fail = [&](std::string_view why) {
+    return Error(fmt::format("cannot read {}: {}", path.string(), why));
+  };
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) throw fail(std::strerror(errno));
+  // libpng says "Read Error" for any failed read: name the cause where the stream knows it.
+  const auto png_failure = [&](const png_image& image) {
+    if (std::feof(file.get())) return fail("the file ends early (truncated or empty)");
+    if (std::ferror(file.get())) return fail(std::strerror(errno));
+    return fail(image.message);
+  };
+  PngImage png;
+  if (png_image_begin_read_from_stdio(&png.image, file.get()) == 0) throw png_failure(png.image);
+  const png_uint_32 width = png.image.width;
+  const png_uint_32 height = png.image.height;
+  if (width > Image::kMaxSize || height > Image::kMaxSize) {
+    throw fail(
+        fmt::format("image size {}x{} is out of range (1..{})", width, height, Image::kMaxSize));
+  }
+  if (png.image.format != PNG_FORMAT_RGB) {
+    throw fail("unsupported PNG format (only 8-bit RGB without transparency is read)");
+  }
+  std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png.image));
+  if (png_image_finish_read(&png.image, nullptr, bytes.data(), 0, nullptr) == 0) {
+    throw png_failure(png.image);
+  }
+  Image img(static_cast<int>(width), static_cast<int>(height));
+  const std::uint8_t* p = bytes.data();
+  for (int y = 0; y < img.height(); ++y) {
+    for (int x = 0; x < img.width(); ++x, p += 3) img.at(x, y) = {p[0], p[1], p[2]};
+  }
+  return img;
 }
 
 // ---- text ----

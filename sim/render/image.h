@@ -1,5 +1,5 @@
 // Image utilities for the renderer and its reports: an 8-bit RGB image, PNG output and input
-// (our own encoder on zlib, so no libpng dependency), bitmap text, labelled grids, the
+// (libpng), bitmap text, labelled grids, the
 // difference image and metrics of Vlasic's evaluation (eqs. 6.1-6.3), and scanline plots.
 #pragma once
 
@@ -54,11 +54,12 @@ class Image {
 // Fills the rectangle [x, x+w) x [y, y+h), clipped to the image.
 void fill_rect(Image& img, int x, int y, int w, int h, Rgb8 colour);
 
-// Writes a PNG (8-bit RGB, non-interlaced, zlib-compressed IDAT, CRC per chunk) atomically through
-// OutputFile: nothing appears at `path` on failure. Error "cannot write <path>: ...".
+// Writes an 8-bit RGB PNG through libpng, atomically through OutputFile: nothing appears at
+// `path` on failure. Error "cannot write <path>: ..." (an empty image is refused up front).
 void write_png(const Image& img, const std::filesystem::path& path);
-// Reads 8-bit RGB non-interlaced PNGs (as write_png makes; filter types 0-4). Error
-// "cannot read <path>: ..." for anything else, truncated or corrupt files included.
+// Reads an 8-bit RGB PNG (as write_png makes; interlaced too) through libpng. Error
+// "cannot read <path>: ..." for anything else (grey, palette, alpha, 16-bit), for truncated or
+// corrupt files and for images larger than Image::kMaxSize.
 Image read_png(const std::filesystem::path& path);
 
 // Bitmap text in an embedded 5x7 font (plus one descender row) covering printable ASCII 32..126,
