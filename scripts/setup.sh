@@ -8,6 +8,7 @@ packages=(
   verilator zlib1g-dev                # RTL simulation (zlib for FST waveforms)
   libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
   libpng-dev                          # PNG images (sim/render/image.h)
+  libtinyobjloader-dev                # OBJ meshes (sim/render/mesh.h)
   python3                             # 3.11: tomllib turns configs into -G parameters
   python3-matplotlib                  # every figure: grids, scanline and Pareto plots (scripts/plot.py)
   yosys                               # synthesis checks (no latches) of every RTL top

@@ -282,9 +282,9 @@ EOT
     expect_error "unknown method 'nonesuch'" "$phongsim" bench methods --method nonesuch
     printf 'mesh = "tri.obj"\nwidht = 3\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/bad.toml"
     expect_error "bad.toml:2: " "$phongsim" render --scene "$tmp/bad.toml" --out "$tmp/o"
-    printf 'v 0 0 0\nv 1 0 zero\nf 1 2 3\n' >"$tmp/bad.obj"
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n' >"$tmp/bad.obj"
     printf 'mesh = "bad.obj"\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/badmesh.toml"
-    expect_error "bad.obj:2: " "$phongsim" render --scene "$tmp/badmesh.toml" --out "$tmp/o"
+    expect_error "bad.obj:4: " "$phongsim" render --scene "$tmp/badmesh.toml" --out "$tmp/o"
     [ ! -e "$tmp/o" ] || fail "an output directory was created for bad input"
     # Unwritable output: one line, nothing written.
     mkdir "$tmp/ro" && chmod 500 "$tmp/ro"
