@@ -123,11 +123,11 @@ def figure_grid(args, plt):
     fig = plt.figure(dpi=dpi)
     renderer = fig.canvas.get_renderer()
 
-    def text_size(text, **kw):
+    def text_size(text, **kw):  # whole pixels, so every image lands on the pixel grid
         t = fig.text(0, 0, text, **kw)
         box = t.get_window_extent(renderer)
         t.remove()
-        return box.width, box.height
+        return math.ceil(box.width), math.ceil(box.height)
 
     label_font = {"fontsize": 11}
     label_w = max(text_size(label, fontweight="bold", **label_font)[0] for label, _ in rows)
@@ -140,8 +140,7 @@ def figure_grid(args, plt):
     # Agg draws at most 2^16 pixels a side; stay well inside by shrinking the images.
     limit = 30000
     if max(width, height) > limit:
-        shrink = limit / max(width, height)
-        scale *= shrink
+        scale *= limit / max(width, height)
         width = pad + label_w + pad + sum(w * scale + pad for w in col_w)
         height = pad + (title_h + pad if args.title else 0) + header_h + 6 + \
             sum(h * scale + pad for h in row_h)
