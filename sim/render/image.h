@@ -52,8 +52,10 @@ class Image {
 // `path` on failure. Error "cannot write <path>: ..." (an empty image is refused up front).
 void write_png(const Image& img, const std::filesystem::path& path);
 // Reads an 8-bit RGB PNG (as write_png makes; interlaced too) through libpng. Error
-// "cannot read <path>: ..." for anything else (grey, palette, alpha, 16-bit), for truncated or
-// corrupt files and for images larger than Image::kMaxSize.
+// "cannot read <path>: ..." for anything else (grey, palette, alpha, 16-bit), for files cut
+// short before their final IEND chunk, corrupt files and images larger than Image::kMaxSize.
+// Values are sRGB: libpng converts a file whose gAMA chunk says otherwise (write_png's files,
+// tagged sRGB, and untagged ones are read as they are).
 Image read_png(const std::filesystem::path& path);
 
 // Vlasic eq. 6.2 difference image: per channel 255 * (|A - B| / 255)^(1/10), rounded to nearest,
