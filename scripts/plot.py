@@ -261,15 +261,32 @@ def figure_pareto(args, plt):
         ax.plot([p["area"] for p in mine], [p["error"] for p in mine], linestyle="none",
                 marker=style["marker"], color=style["color"], markersize=7, label=name, zorder=3)
     front = sorted((p for p in points if p["front"]), key=lambda p: p["area"])
+    if log_x:
+        plain_log_axis(ax.xaxis, ax.set_xscale)
+    if log_y:
+        plain_log_axis(ax.yaxis, ax.set_yscale)
+    ax.margins(x=0.12, y=0.12)
     if front:
-        # The front as a staircase: at any area, the least error some point of that area or
-        # less reaches.
-        ax.step([p["area"] for p in front], [p["error"] for p in front], where="post",
-                color="black", linewidth=1.4, linestyle="--", zorder=2,
+        # The front as a staircase from the top edge to the right edge: at any area, the least
+        # error some point of that area or less reaches; everything above and right of it is
+        # dominated.
+        (x_lo, x_hi), (y_lo, y_hi) = ax.get_xlim(), ax.get_ylim()
+        xs, ys = [front[0]["area"]], [y_hi]
+        for prev, p in zip([None] + front[:-1], front):
+            if prev is not None:
+                xs.append(p["area"])
+                ys.append(prev["error"])
+            xs.append(p["area"])
+            ys.append(p["error"])
+        xs.append(x_hi)
+        ys.append(front[-1]["error"])
+        ax.plot(xs, ys, color="black", linewidth=1.4, linestyle="--", zorder=2,
                 label="Pareto front")
         ax.plot([p["area"] for p in front], [p["error"] for p in front], linestyle="none",
                 marker="o", markersize=13, markerfacecolor="none", markeredgecolor="black",
                 markeredgewidth=1.2, zorder=4)
+        ax.set_xlim(x_lo, x_hi)
+        ax.set_ylim(y_lo, y_hi)
     # Labels: every point of a small sweep, else the front's. When there are many, the points
     # carry their "#index" and a key beside the plot spells out the front.
     labelled = sorted(points if len(points) <= 12 else front, key=lambda p: p["area"])
@@ -281,16 +298,11 @@ def figure_pareto(args, plt):
     if compact and front:
         ax.text(1.02, 1.0, "Pareto front, by area:\n" + "\n".join(p["label"] for p in front),
                 transform=ax.transAxes, va="top", ha="left", fontsize=8, family="monospace")
-    if log_x:
-        plain_log_axis(ax.xaxis, ax.set_xscale)
-    if log_y:
-        plain_log_axis(ax.yaxis, ax.set_yscale)
     ax.set_xlabel(args.x_label + ("   (log scale)" if log_x else ""))
     ax.set_ylabel(args.y_label + ("   (log scale)" if log_y else ""))
     ax.set_title(args.title, fontsize=13, fontweight="bold")
     ax.grid(True, which="major", color="#dddddd", linewidth=0.6)
     ax.grid(True, which="minor", color="#f0f0f0", linewidth=0.5)
-    ax.margins(x=0.12, y=0.12)
     ax.legend(loc="best", fontsize=9, framealpha=0.9)
     fig.tight_layout()
     return fig
@@ -308,7 +320,7 @@ def plain_log_axis(axis, set_scale):
 
     set_scale("log")
     axis.set_major_formatter(Plain())
-    axis.set_minor_formatter(Plain(labelOnlyBase=False, minor_thresholds=(2, 0.5)))
+    axis.set_minor_formatter(Plain(labelOnlyBase=False, minor_thresholds=(3, 1)))
 
 
 FIGURES = {"grid": figure_grid, "scanline": figure_scanline, "pareto": figure_pareto}
