@@ -1,5 +1,6 @@
-// Small file helpers shared by the plugin cache, synthesis, meshes and sweeps: a whole file as
-// text, and the content hash their caches are keyed by.
+// Small file helpers shared by the plugin cache, synthesis, configurations, scenes, meshes and
+// sweeps: a whole file as text (the one read_file of the tree), and the content hash their caches
+// are keyed by.
 #pragma once
 
 #include <fmt/format.h>
@@ -11,6 +12,8 @@
 #include <string>
 #include <string_view>
 
+#include "base/error.h"
+
 namespace phongsim {
 
 // The file's bytes ("" when it cannot be read: callers that care check existence first).
@@ -18,6 +21,16 @@ inline std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
+  return s.str();
+}
+
+// The file's bytes; Error("<path>: cannot read <what>") when it cannot be opened or read, e.g.
+// read_file(path, "scene file").
+inline std::string read_file(const std::filesystem::path& path, std::string_view what) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  if (in) s << in.rdbuf();
+  if (!in || in.bad()) throw Error(fmt::format("{}: cannot read {}", path.string(), what));
   return s.str();
 }
 

@@ -14,5 +14,6 @@ const std::filesystem::path& build_root() {
 
 const char* cmake_program() { return PHONGSIM_CMAKE; }
 const char* cxx_compiler() { return PHONGSIM_CXX_COMPILER; }
+const char* python_program() { return PHONGSIM_PYTHON; }
 
 }  // namespace phongsim

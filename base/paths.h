@@ -15,5 +15,8 @@ namespace phongsim {
 // Tools found when phongsim was configured.
 [[nodiscard]] const char* cmake_program();
 [[nodiscard]] const char* cxx_compiler();
+// The Python that runs scripts/ at run time (Debian's /usr/bin/python3 when present: it has
+// matplotlib for scripts/plot.py; a python3 earlier in PATH may be a separate install).
+[[nodiscard]] const char* python_program();
 
 }  // namespace phongsim

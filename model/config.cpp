@@ -5,10 +5,9 @@
 #include <toml++/toml.h>
 #include <algorithm>
 #include <cctype>
-#include <fstream>
-#include <sstream>
 
 #include "base/error.h"
+#include "base/file_util.h"
 
 namespace phongsim {
 namespace {
@@ -20,11 +19,7 @@ int line_of(const toml::node& node) { return static_cast<int>(node.source().begi
 }  // namespace
 
 Config Config::load(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("{}: cannot read configuration file", path.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse(text.str(), path.string());
+  return parse(read_file(path, "configuration file"), path.string());
 }
 
 Config Config::parse(std::string_view text, const std::string& origin) {

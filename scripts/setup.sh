@@ -7,7 +7,10 @@ packages=(
   build-essential cmake ninja-build   # C++20 toolchain and build
   verilator zlib1g-dev                # RTL simulation (zlib for FST waveforms)
   libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
+  libpng-dev                          # PNG images (sim/render/image.h)
+  libtinyobjloader-dev                # OBJ meshes (sim/render/mesh.h)
   python3                             # tests/gen_fx_cosim.py writes a test top at configure time
+  python3-matplotlib                  # every figure: grids, scanline and Pareto plots (scripts/plot.py)
   yosys                               # synthesis checks (no latches) of every RTL top
   nextpnr-ice40                       # iCE40 place and route: fmax of a configuration (sim/explore/synth.h)
   clang-format                        # style check in the test suite

@@ -247,7 +247,7 @@ EOT
     # The main job's command at a small size: every output file, a JSON summary, the RTL rows.
     "$phongsim" render --scene shinyballs --size 12 --no-build --out "$tmp/r" --json "$tmp/r.json" \
       >"$tmp/stdout" 2>"$tmp/err" || fail "render failed: $(cat "$tmp/err")"
-    for f in grid.png scanline.png metrics.csv metrics.md phong.png lyon-k2.png lyon-k2_diff.png; do
+    for f in grid.png scanline.png scanline.csv metrics.csv metrics.md phong.png lyon-k2.png lyon-k2_diff.png; do
       [ -s "$tmp/r/shinyballs_$f" ] || fail "missing shinyballs_$f"
     done
     grep -q '| lyon-k2 | rtl |' "$tmp/stdout" || fail "lyon-k2 not through the RTL: $(cat "$tmp/stdout")"
@@ -310,9 +310,9 @@ EOT
     expect_error "unknown method 'nonesuch'" "$phongsim" bench methods --method nonesuch
     printf 'mesh = "tri.obj"\nwidht = 3\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/bad.toml"
     expect_error "bad.toml:2: " "$phongsim" render --scene "$tmp/bad.toml" --out "$tmp/o"
-    printf 'v 0 0 0\nv 1 0 zero\nf 1 2 3\n' >"$tmp/bad.obj"
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n' >"$tmp/bad.obj"
     printf 'mesh = "bad.obj"\n[[light]]\ndirection = [0, 0, 1]\n' >"$tmp/badmesh.toml"
-    expect_error "bad.obj:2: " "$phongsim" render --scene "$tmp/badmesh.toml" --out "$tmp/o"
+    expect_error "bad.obj:4: " "$phongsim" render --scene "$tmp/badmesh.toml" --out "$tmp/o"
     [ ! -e "$tmp/o" ] || fail "an output directory was created for bad input"
     # Unwritable output: one line, nothing written.
     mkdir "$tmp/ro" && chmod 500 "$tmp/ro"
@@ -334,6 +334,7 @@ EOT
       fail "sweep run: $(cat "$tmp/stdout")"
     [ "$(wc -l <"$tmp/run/sweep.csv")" -eq 5 ] || fail "sweep.csv: $(cat "$tmp/run/sweep.csv")"
     [ -s "$tmp/run/pareto.png" ] || fail "no pareto.png"
+    [ "$(wc -l <"$tmp/run/pareto.csv")" -eq 5 ] || fail "pareto.csv: $(cat "$tmp/run/pareto.csv")"
     grep -q "| yes |" "$tmp/run/summary.md" || fail "no Pareto point marked: $(cat "$tmp/run/summary.md")"
     awk -F, 'NR > 1 && ($11 <= 0 || $12 <= 0 || $13 <= 0) {exit 1}' "$tmp/run/sweep.csv" ||
       fail "missing synthesis numbers: $(cat "$tmp/run/sweep.csv")"

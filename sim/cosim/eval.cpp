@@ -9,30 +9,11 @@
 
 #include "base/error.h"
 #include "base/output_file.h"
+#include "base/text.h"
 #include "sim/cosim/harness.h"
 
 namespace phongsim {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) {
-    s.remove_suffix(1);
-  }
-  return s;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> cells;
-  std::size_t start = 0;
-  while (true) {
-    const auto comma = line.find(',', start);
-    cells.push_back(trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  return cells;
-}
 
 std::int64_t parse_raw(std::string_view text, const Field& f, const std::string& where) {
   const bool negative = !text.empty() && text.front() == '-';
@@ -93,7 +74,7 @@ std::vector<std::int64_t> read_vectors(const std::filesystem::path& path,
   for (int line_no = 1; std::getline(in, line); ++line_no) {
     const auto content = trim(line);
     if (content.empty() || content.front() == '#') continue;
-    const auto cells = split(content);
+    const auto cells = split_csv(content);
     const std::string where_line = fmt::format("{}:{}", path.string(), line_no);
     if (columns == 0) {  // header
       columns = cells.size();

@@ -18,7 +18,7 @@
 #include "base/output_file.h"
 #include "base/paths.h"
 #include "sim/pipelines/registry.h"
-#include "sim/render/image.h"
+#include "sim/render/plot.h"
 #include "sim/render/render.h"
 
 namespace phongsim {
@@ -549,32 +549,44 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
   write_text(out / "summary.md", md);
 
   if (synth) {
-    std::map<std::string, XySeries> series;
+    // pareto.csv (the figure's data) and pareto.png (scripts/plot.py pareto): error against
+    // area, one series per variant, the front drawn and its points labelled "#<index> ...".
+    const auto axis_name = [](const std::string& key) { return key.substr(key.rfind('.') + 1); };
+    std::string data = "series,label,area,max_error,pareto\n";
     for (const PointResult& r : results) {
-      std::string variant = "all";
+      const double area = area_of(spec, r);
+      if (!std::isfinite(area)) continue;
+      const fs::path base(r.base);
+      const std::string base_name =
+          base.parent_path().filename().string() + "/" + base.stem().string();
+      std::string series = "all points";
       if (spec.variant == "base") {
-        variant = fs::path(r.base).stem().string();
+        series = base_name;
       } else if (!spec.variant.empty()) {
         for (const auto& v : r.values) {
-          if (v.first == spec.variant) variant = spec.variant + "=" + unquote(v.second);
+          if (v.first == spec.variant) series = axis_name(v.first) + " = " + unquote(v.second);
         }
       }
-      auto& s = series[variant];
-      s.label = variant;
-      s.lines = false;
-      s.points.emplace_back(area_of(spec, r), r.error.max_abs);
+      std::string label = fmt::format("#{}", r.index);
+      if (spec.bases.size() > 1 && spec.variant != "base") label += " " + base_name;
+      for (const auto& v : r.values)
+        label += fmt::format(" {}={}", axis_name(v.first), unquote(v.second));
+      // The CSV has no quoting: keep commas out of the names.
+      std::replace(series.begin(), series.end(), ',', ';');
+      std::replace(label.begin(), label.end(), ',', ';');
+      data += fmt::format("{},{},{},{},{}\n", series, label, area, r.error.max_abs,
+                          dominated(r) ? 0 : 1);
     }
-    std::vector<XySeries> list;
-    for (auto& [k, s] : series) {
-      std::sort(s.points.begin(), s.points.end());
-      list.push_back(s);
-    }
-    XyAxes axes;
-    axes.x_label = spec.area;
-    axes.y_label = "max |error| (absolute)";
-    axes.log_y = true;
-    write_png(plot_xy(list, axes, fmt::format("{}: error against area", spec.name)),
-              out / "pareto.png");
+    write_text(out / "pareto.csv", data);
+    const std::string area_caption = spec.area == "transistors"
+                                         ? "area: transistors (Yosys stat -tech cmos)"
+                                     : spec.area == "lut4" ? "area: iCE40 LUT4s (synth_ice40)"
+                                                           : "area: cells (Yosys generic synth)";
+    plot_figure("pareto",
+                {"--csv", (out / "pareto.csv").string(), "--title",
+                 fmt::format("{}: max error against area", spec.name), "--x-label", area_caption,
+                 "--y-label", "max |error| against the float reference (output units)"},
+                out / "pareto.png");
   }
   return results;
 }

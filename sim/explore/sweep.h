@@ -87,8 +87,9 @@ std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const std::filesystem:
 // Result JSON of one point (written by `phongsim sweep point`, read by merge).
 void write_point_result(const PointResult& r, const std::filesystem::path& path);
 
-// Collects <out>/results/*.json into <out>/sweep.csv, <out>/summary.md and <out>/pareto.png
-// (max error against area, one curve per variant, the Pareto front marked in summary.md).
+// Collects <out>/results/*.json into <out>/sweep.csv and <out>/summary.md (the Pareto front
+// marked) and, with synthesis, <out>/pareto.csv and pareto.png (scripts/plot.py pareto: max
+// error against area, one series per variant, the front drawn and its points labelled).
 // Error when a planned point has no result yet (naming it).
 std::vector<PointResult> merge_sweep(const SweepSpec& spec, const std::filesystem::path& out);
 

@@ -22,6 +22,7 @@
 #include "base/file_util.h"
 #include "base/paths.h"
 #include "base/process.h"
+#include "base/text.h"
 #include "sim/cosim/rtl_plugin.h"
 
 namespace phongsim {
@@ -35,19 +36,12 @@ namespace {
 constexpr const char* kFlowVersion = "phongsim synth flow 1";
 constexpr const char* kWrapTop = "phongsim_synth_wrap";
 
-std::string trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string_view::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return std::string(s.substr(b, e - b + 1));
-}
-
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
   std::string line;
   while (std::getline(in, line)) {
-    if (!trim(line).empty()) lines.push_back(trim(line));
+    if (!trim(line).empty()) lines.emplace_back(trim(line));
   }
   return lines;
 }

@@ -1,23 +1,24 @@
 #include "sim/render/mesh.h"
 
 #include <fmt/format.h>
+#include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <bit>
 #include <charconv>
 #include <cmath>
-#include <cstdint>
-#include <fstream>
 #include <map>
 #include <numeric>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
 
 #include "base/error.h"
+#include "base/file_util.h"
 #include "base/paths.h"
+#include "base/text.h"
 
 namespace phongsim {
 namespace fs = std::filesystem;
@@ -31,14 +32,6 @@ constexpr Vec3 kUp{0, 1, 0};  // the normal of last resort (never NaN)
 
 [[noreturn]] void fail_file(const fs::path& file, const std::string& what) {
   throw Error(fmt::format("{}: {}", file.string(), what));
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_file(path, "cannot read file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 bool finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -78,7 +71,6 @@ class Lines {
     return true;
   }
   [[nodiscard]] int number() const { return number_; }
-  [[nodiscard]] std::size_t offset() const { return pos_; }  // start of the next line
 
  private:
   std::string_view text_;
@@ -279,150 +271,6 @@ Mesh weld(const Mesh& in, double eps, double crease_cos) {
   }
   return out;
 }
-
-// ---- PLY ----
-
-enum class PlyType { kI8, kU8, kI16, kU16, kI32, kU32, kF32, kF64 };
-
-std::optional<PlyType> ply_type(std::string_view name) {
-  static const std::pair<std::string_view, PlyType> kNames[] = {
-      {"char", PlyType::kI8},    {"int8", PlyType::kI8},     {"uchar", PlyType::kU8},
-      {"uint8", PlyType::kU8},   {"short", PlyType::kI16},   {"int16", PlyType::kI16},
-      {"ushort", PlyType::kU16}, {"uint16", PlyType::kU16},  {"int", PlyType::kI32},
-      {"int32", PlyType::kI32},  {"uint", PlyType::kU32},    {"uint32", PlyType::kU32},
-      {"float", PlyType::kF32},  {"float32", PlyType::kF32}, {"double", PlyType::kF64},
-      {"float64", PlyType::kF64}};
-  for (const auto& [n, t] : kNames) {
-    if (n == name) return t;
-  }
-  return std::nullopt;
-}
-
-bool is_integer_type(PlyType t) { return t != PlyType::kF32 && t != PlyType::kF64; }
-
-std::size_t type_size(PlyType t) {
-  switch (t) {
-    case PlyType::kI8:
-    case PlyType::kU8:
-      return 1;
-    case PlyType::kI16:
-    case PlyType::kU16:
-      return 2;
-    case PlyType::kI32:
-    case PlyType::kU32:
-    case PlyType::kF32:
-      return 4;
-    case PlyType::kF64:
-      return 8;
-  }
-  return 0;
-}
-
-struct PlyProperty {
-  std::string name;
-  PlyType type = PlyType::kF32;
-  bool is_list = false;
-  PlyType count_type = PlyType::kU8;
-};
-
-struct PlyElement {
-  std::string name;
-  long long count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-// The body as a stream of numbers: ascii tokens (with their line) or little-endian binary.
-class PlyBody {
- public:
-  PlyBody(const fs::path& path, std::string_view data, bool ascii, int first_line)
-      : path_(path), data_(data), ascii_(ascii), line_(first_line) {}
-
-  // The next value of type t; `what` names it for errors ("vertex 3", "face 7").
-  double number(PlyType t, const std::string& what) {
-    if (ascii_) {
-      const std::string_view tok = token(what);
-      if (is_integer_type(t)) {
-        const auto v = parse_integer(tok);
-        if (!v) fail_at(path_, token_line_, fmt::format("{}: malformed integer '{}'", what, tok));
-        return static_cast<double>(*v);
-      }
-      const auto v = parse_double(tok);
-      if (!v) fail_at(path_, token_line_, fmt::format("{}: malformed number '{}'", what, tok));
-      return *v;
-    }
-    const std::size_t size = type_size(t);
-    if (data_.size() - pos_ < size) {
-      fail_file(path_, fmt::format("binary data ends inside {}", what));
-    }
-    std::uint64_t bits = 0;
-    for (std::size_t k = 0; k < size; ++k) {
-      bits |= static_cast<std::uint64_t>(static_cast<unsigned char>(data_[pos_ + k])) << (8 * k);
-    }
-    pos_ += size;
-    switch (t) {
-      case PlyType::kI8:
-        return static_cast<std::int8_t>(bits);
-      case PlyType::kU8:
-        return static_cast<std::uint8_t>(bits);
-      case PlyType::kI16:
-        return static_cast<std::int16_t>(bits);
-      case PlyType::kU16:
-        return static_cast<std::uint16_t>(bits);
-      case PlyType::kI32:
-        return static_cast<std::int32_t>(bits);
-      case PlyType::kU32:
-        return static_cast<std::uint32_t>(bits);
-      case PlyType::kF32: {
-        const double v = std::bit_cast<float>(static_cast<std::uint32_t>(bits));
-        if (!std::isfinite(v)) fail_file(path_, fmt::format("{}: non-finite value", what));
-        return v;
-      }
-      case PlyType::kF64: {
-        const double v = std::bit_cast<double>(bits);
-        if (!std::isfinite(v)) fail_file(path_, fmt::format("{}: non-finite value", what));
-        return v;
-      }
-    }
-    return 0;
-  }
-
-  // Throws unless only whitespace (ascii) or nothing (binary) is left.
-  void expect_end() {
-    if (ascii_) {
-      skip_space();
-      if (pos_ < data_.size()) fail_at(path_, line_, "unexpected data after the last element");
-    } else if (pos_ < data_.size()) {
-      fail_file(path_,
-                fmt::format("{} bytes of binary data after the last element", data_.size() - pos_));
-    }
-  }
-
-  [[nodiscard]] int line() const { return token_line_; }  // of the last ascii token
-  [[nodiscard]] bool ascii() const { return ascii_; }
-
- private:
-  void skip_space() {
-    while (pos_ < data_.size() && (is_space(data_[pos_]) || data_[pos_] == '\n')) {
-      if (data_[pos_] == '\n') ++line_;
-      ++pos_;
-    }
-  }
-  std::string_view token(const std::string& what) {
-    skip_space();
-    if (pos_ >= data_.size()) fail_at(path_, line_, fmt::format("data ends before {}", what));
-    const std::size_t start = pos_;
-    while (pos_ < data_.size() && !is_space(data_[pos_]) && data_[pos_] != '\n') ++pos_;
-    token_line_ = line_;
-    return data_.substr(start, pos_ - start);
-  }
-
-  const fs::path& path_;
-  std::string_view data_;
-  bool ascii_;
-  std::size_t pos_ = 0;
-  int line_;
-  int token_line_ = 0;
-};
 
 }  // namespace
 
@@ -627,7 +475,7 @@ Mesh single_triangle() {
 // ---- Bézier-patch teapot ----
 
 std::vector<BezierPatch> read_bpt_patches(const fs::path& path) {
-  const std::string text = read_file(path);
+  const std::string text = read_file(path, "file");
   Lines lines(text);
   std::string_view line;
   // The next line that is not blank, split into tokens; fails at the end of the file.
@@ -737,110 +585,87 @@ Mesh teapot(int resolution) {
 
 // ---- Mesh files ----
 
+namespace {
+
+// tinyobjloader's error as one line, "<file>:<line>: <what>" where it names the line.
+[[noreturn]] void fail_obj(const fs::path& path, std::string_view err) {
+  err = trim(err.substr(0, err.find('\n')));
+  static const std::regex kFailedParse(R"(Failed parse `(\w+)' line.* line (\d+)\.\)$)");
+  std::cmatch m;
+  if (std::regex_search(err.begin(), err.end(), m, kFailedParse)) {
+    fail_at(path, std::stoi(m[2].str()),
+            fmt::format("malformed '{}' statement (an index that is 0, or no number)", m[1].str()));
+  }
+  fail_file(path, std::string(err));
+}
+
+}  // namespace
+
 Mesh read_obj(const fs::path& path) {
-  const std::string text = read_file(path);
-  std::vector<Vec3> positions, normals;
+  std::istringstream text(read_file(path, "file"));
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warn, err;
+  // No material reader (mtllib is ignored) and no triangulation: polygons are fanned below.
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &text, nullptr, false)) {
+    fail_obj(path, err);
+  }
+  if (warn.find("Degenerated face") != std::string::npos) {
+    fail_file(path, "a face with fewer than 3 vertices");
+  }
+  const auto vec = [](const std::vector<tinyobj::real_t>& xyz, std::size_t i) {
+    return Vec3{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+  };
+  const std::size_t n_positions = attrib.vertices.size() / 3;
+  const std::size_t n_normals = attrib.normals.size() / 3;
   struct Corner {
-    long long v = 0;   // 0-based (may be out of range until checked)
-    long long n = -1;  // 0-based, -1: none
+    int v = 0;   // 0-based
+    int n = -1;  // 0-based, -1: none
   };
-  struct Face {
-    int line = 0;
-    std::size_t first = 0, count = 0;  // into corners
-  };
-  std::vector<Corner> corners;
-  std::vector<Face> faces;
-  Lines lines(text);
-  std::string_view line;
-  while (lines.next(line)) {
-    const int at = lines.number();
-    if (const auto hash = line.find('#'); hash != std::string_view::npos)
-      line = line.substr(0, hash);
-    const auto tokens = split_ws(line);
-    if (tokens.empty()) continue;
-    const std::string_view kw = tokens[0];
-    if (kw == "v" || kw == "vn") {
-      if (kw == "v" ? tokens.size() < 4 : tokens.size() != 4) {
-        fail_at(path, at, fmt::format("'{}' needs 3 coordinates, got {}", kw, tokens.size() - 1));
-      }
-      double c[3] = {0, 0, 0};
-      for (std::size_t k = 1; k < tokens.size(); ++k) {
-        const auto v = parse_double(tokens[k]);
-        if (!v) fail_at(path, at, fmt::format("malformed number '{}'", tokens[k]));
-        if (k <= 3) c[k - 1] = *v;
-      }
-      (kw == "v" ? positions : normals).push_back({c[0], c[1], c[2]});
-    } else if (kw == "f") {
-      if (tokens.size() < 4) {
-        fail_at(path, at,
-                fmt::format("face with {} vertices (needs at least 3)", tokens.size() - 1));
-      }
-      Face face{at, corners.size(), tokens.size() - 1};
-      for (std::size_t k = 1; k < tokens.size(); ++k) {
-        const std::string_view tok = tokens[k];
-        std::string_view parts[3];
-        std::size_t nparts = 0, start = 0;
-        for (std::size_t i = 0; i <= tok.size(); ++i) {
-          if (i == tok.size() || tok[i] == '/') {
-            if (nparts == 3) fail_at(path, at, fmt::format("malformed face corner '{}'", tok));
-            parts[nparts++] = tok.substr(start, i - start);
-            start = i + 1;
-          }
+  std::vector<std::vector<Corner>> faces;
+  for (const tinyobj::shape_t& shape : shapes) {
+    const tinyobj::mesh_t& mesh = shape.mesh;
+    std::size_t at = 0;
+    for (const unsigned char count : mesh.num_face_vertices) {
+      std::vector<Corner>& face = faces.emplace_back();
+      for (std::size_t k = 0; k < count && at < mesh.indices.size(); ++k, ++at) {
+        const tinyobj::index_t& c = mesh.indices[at];
+        if (c.vertex_index < 0 || c.normal_index < -1) {
+          fail_file(path, "a negative (relative) index reaches before the first vertex or normal");
         }
-        // i, i/j, i//k, i/j/k: the vertex index is required, the others optional.
-        const auto index = [&](std::string_view s, std::size_t count, const char* what) {
-          const auto v = parse_integer(s);
-          if (!v || *v == 0) {
-            fail_at(path, at, fmt::format("malformed {} index '{}' in '{}'", what, s, tok));
-          }
-          return *v > 0 ? *v - 1 : static_cast<long long>(count) + *v;
-        };
-        Corner c;
-        c.v = index(parts[0], positions.size(), "vertex");
-        if (nparts >= 2 && !parts[1].empty()) (void)index(parts[1], 0, "texture");
-        if (nparts == 3 && !parts[2].empty()) c.n = index(parts[2], normals.size(), "normal");
-        if (c.v < 0) fail_at(path, at, fmt::format("vertex index in '{}' out of range", tok));
-        if (nparts == 3 && !parts[2].empty() && c.n < 0) {
-          fail_at(path, at, fmt::format("normal index in '{}' out of range", tok));
+        if (static_cast<std::size_t>(c.vertex_index) >= n_positions) {
+          fail_file(path, fmt::format("vertex index {} out of range (there are {} vertices)",
+                                      c.vertex_index + 1, n_positions));
         }
-        corners.push_back(c);
+        if (c.normal_index >= 0 && static_cast<std::size_t>(c.normal_index) >= n_normals) {
+          fail_file(path, fmt::format("normal index {} out of range (there are {} normals)",
+                                      c.normal_index + 1, n_normals));
+        }
+        face.push_back({c.vertex_index, c.normal_index});
       }
-      faces.push_back(face);
     }
-    // Everything else (vt, o, g, s, usemtl, mtllib, l, p, ...) is ignored.
+    // tinyobjloader counts a face's corners in an unsigned char.
+    if (at != mesh.indices.size()) fail_file(path, "a face with more than 255 vertices");
   }
   if (faces.empty()) fail_file(path, "no triangles (no 'f' statements)");
-  for (const Face& f : faces) {
-    for (std::size_t k = f.first; k < f.first + f.count; ++k) {
-      if (corners[k].v >= static_cast<long long>(positions.size())) {
-        fail_at(path, f.line,
-                fmt::format("vertex index {} out of range (there are {} vertices)",
-                            corners[k].v + 1, positions.size()));
-      }
-      if (corners[k].n >= static_cast<long long>(normals.size())) {
-        fail_at(path, f.line,
-                fmt::format("normal index {} out of range (there are {} normals)", corners[k].n + 1,
-                            normals.size()));
-      }
-    }
-  }
+
+  std::vector<Vec3> positions(n_positions);
+  for (std::size_t i = 0; i < n_positions; ++i) positions[i] = vec(attrib.vertices, i);
   // Area-weighted normals per position, for corners without a (usable) normal.
   std::vector<std::array<int, 3>> position_tris;
-  for (const Face& f : faces) {
+  for (const auto& face : faces) {
     std::vector<int> poly;
-    for (std::size_t k = f.first; k < f.first + f.count; ++k) {
-      poly.push_back(static_cast<int>(corners[k].v));
-    }
+    for (const Corner& c : face) poly.push_back(c.v);
     fan(poly, position_tris);
   }
   const std::vector<Vec3> computed = area_weighted_normals(positions, position_tris);
   Mesh m;
-  std::map<std::pair<long long, long long>, int> vertex_of;
-  for (const Face& f : faces) {
+  std::map<std::pair<int, int>, int> vertex_of;  // (position, normal) -> vertex
+  for (const auto& face : faces) {
     std::vector<int> poly;
-    for (std::size_t k = f.first; k < f.first + f.count; ++k) {
-      Corner c = corners[k];
-      const Vec3 given = c.n >= 0 ? normalized_or(normals[c.n], {}) : Vec3{};
+    for (Corner c : face) {
+      const Vec3 given = c.n >= 0 ? normalized_or(vec(attrib.normals, c.n), {}) : Vec3{};
       if (given == Vec3{}) c.n = -1;
       const auto [it, added] =
           vertex_of.emplace(std::pair{c.v, c.n}, static_cast<int>(m.positions.size()));
@@ -855,198 +680,14 @@ Mesh read_obj(const fs::path& path) {
   return m;
 }
 
-Mesh read_ply(const fs::path& path) {
-  const std::string text = read_file(path);
-  Lines lines(text);
-  std::string_view line;
-  if (!lines.next(line) || line != "ply")
-    fail_at(path, 1, "not a PLY file (first line is not 'ply')");
-  bool ascii = false, have_format = false;
-  std::vector<PlyElement> elements;
-  bool ended = false;
-  while (lines.next(line)) {
-    const int at = lines.number();
-    const auto tokens = split_ws(line);
-    if (tokens.empty()) continue;
-    const std::string_view kw = tokens[0];
-    if (kw == "end_header") {
-      ended = true;
-      break;
-    }
-    if (kw == "comment" || kw == "obj_info") continue;
-    if (kw == "format") {
-      if (tokens.size() != 3)
-        fail_at(path, at, "expected 'format <ascii|binary_little_endian> 1.0'");
-      if (tokens[1] == "binary_big_endian") {
-        fail_at(path, at,
-                "binary_big_endian PLY is unsupported (use ascii or binary_little_endian)");
-      }
-      if (tokens[1] != "ascii" && tokens[1] != "binary_little_endian") {
-        fail_at(path, at, fmt::format("unknown PLY format '{}'", tokens[1]));
-      }
-      if (tokens[2] != "1.0") {
-        fail_at(path, at, fmt::format("unsupported PLY version '{}' (only 1.0)", tokens[2]));
-      }
-      ascii = tokens[1] == "ascii";
-      have_format = true;
-    } else if (kw == "element") {
-      const auto count = tokens.size() == 3 ? parse_integer(tokens[2]) : std::nullopt;
-      if (!count || *count < 0 || *count > (1LL << 31) - 1) {
-        fail_at(path, at, "expected 'element <name> <count>' with a count in [0, 2^31 - 1]");
-      }
-      elements.push_back({std::string(tokens[1]), *count, {}});
-    } else if (kw == "property") {
-      if (elements.empty()) fail_at(path, at, "'property' before any 'element'");
-      PlyProperty p;
-      std::optional<PlyType> type;
-      if (tokens.size() == 5 && tokens[1] == "list") {
-        const auto count_type = ply_type(tokens[2]);
-        type = ply_type(tokens[3]);
-        if (!count_type || !is_integer_type(*count_type)) {
-          fail_at(path, at, fmt::format("list count type '{}' is not an integer type", tokens[2]));
-        }
-        p.is_list = true;
-        p.count_type = *count_type;
-        if (!type) fail_at(path, at, fmt::format("unknown property type '{}'", tokens[3]));
-        p.name = std::string(tokens[4]);
-      } else if (tokens.size() == 3 && tokens[1] != "list") {
-        type = ply_type(tokens[1]);
-        if (!type) fail_at(path, at, fmt::format("unknown property type '{}'", tokens[1]));
-        p.name = std::string(tokens[2]);
-      } else {
-        fail_at(path, at,
-                "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
-      }
-      p.type = *type;
-      elements.back().properties.push_back(p);
-    } else {
-      fail_at(path, at, fmt::format("unknown header line '{}'", kw));
-    }
-  }
-  if (!ended) fail_at(path, lines.number(), "header without 'end_header'");
-  if (!have_format) fail_at(path, lines.number(), "header without a 'format' line");
-
-  // Where the properties we need sit.
-  const auto find_element = [&](std::string_view name) -> const PlyElement* {
-    for (const auto& e : elements) {
-      if (e.name == name) return &e;
-    }
-    return nullptr;
-  };
-  const PlyElement* vertex = find_element("vertex");
-  const PlyElement* face = find_element("face");
-  if (vertex == nullptr) fail_file(path, "no 'element vertex' in the header");
-  if (face == nullptr || face->count == 0) fail_file(path, "no triangles (no faces)");
-  const auto slot = [](const PlyElement& e, std::string_view name) {
-    for (std::size_t i = 0; i < e.properties.size(); ++i) {
-      if (e.properties[i].name == name) return static_cast<int>(i);
-    }
-    return -1;
-  };
-  const int sx = slot(*vertex, "x"), sy = slot(*vertex, "y"), sz = slot(*vertex, "z");
-  const int snx = slot(*vertex, "nx"), sny = slot(*vertex, "ny"), snz = slot(*vertex, "nz");
-  if (sx < 0 || sy < 0 || sz < 0) fail_file(path, "element vertex lacks property x, y or z");
-  for (const int s : {sx, sy, sz, snx, sny, snz}) {
-    if (s >= 0 && vertex->properties[s].is_list) {
-      fail_file(path, fmt::format("vertex property '{}' is a list", vertex->properties[s].name));
-    }
-  }
-  const bool has_normals = snx >= 0 && sny >= 0 && snz >= 0;
-  if (!has_normals && (snx >= 0 || sny >= 0 || snz >= 0)) {
-    fail_file(path, "element vertex has some but not all of nx, ny, nz");
-  }
-  int sidx = slot(*face, "vertex_indices");
-  if (sidx < 0) sidx = slot(*face, "vertex_index");
-  if (sidx < 0) fail_file(path, "element face lacks a list property vertex_indices");
-  if (!face->properties[sidx].is_list || !is_integer_type(face->properties[sidx].type)) {
-    fail_file(path, "face property vertex_indices must be a list of integers");
-  }
-
-  // Which of x, y, z, nx, ny, nz (0..5) each vertex property is, -1 for none.
-  std::vector<int> vertex_slot(vertex->properties.size(), -1);
-  const int slots[6] = {sx, sy, sz, snx, sny, snz};
-  for (int k = 0; k < 6; ++k) {
-    if (slots[k] >= 0) vertex_slot[static_cast<std::size_t>(slots[k])] = k;
-  }
-  const std::size_t data_start = std::min(lines.offset(), text.size());
-  PlyBody body(path, std::string_view(text).substr(data_start), ascii, lines.number() + 1);
-  std::vector<Vec3> positions, normals;
-  std::vector<std::vector<long long>> polygons;
-  std::vector<int> polygon_lines;
-  for (const PlyElement& e : elements) {
-    for (long long item = 0; item < e.count; ++item) {
-      const std::string what = fmt::format("{} {}", e.name, item);
-      double values[6] = {0, 0, 0, 0, 0, 0};
-      std::vector<long long> indices;
-      int count_line = 0;
-      for (std::size_t k = 0; k < e.properties.size(); ++k) {
-        const PlyProperty& p = e.properties[k];
-        if (!p.is_list) {
-          const double v = body.number(p.type, what);
-          if (&e == vertex && vertex_slot[k] >= 0) values[vertex_slot[k]] = v;
-          continue;
-        }
-        const double count = body.number(p.count_type, what);
-        count_line = body.line();
-        if (count < 0 || count > 1e6) {
-          if (ascii) fail_at(path, count_line, fmt::format("{}: list length {}", what, count));
-          fail_file(path, fmt::format("{}: list length {}", what, count));
-        }
-        const bool wanted = &e == face && static_cast<int>(k) == sidx;
-        for (long long i = 0; i < static_cast<long long>(count); ++i) {
-          const double v = body.number(p.type, what);
-          if (wanted) indices.push_back(static_cast<long long>(v));
-        }
-      }
-      if (&e == vertex) {
-        positions.push_back({values[0], values[1], values[2]});
-        normals.push_back({values[3], values[4], values[5]});
-      } else if (&e == face) {
-        if (indices.size() < 3) {
-          const std::string msg =
-              fmt::format("{} has {} vertices (needs at least 3)", what, indices.size());
-          if (ascii) fail_at(path, count_line, msg);
-          fail_file(path, msg);
-        }
-        polygons.push_back(std::move(indices));
-        polygon_lines.push_back(count_line);
-      }
-    }
-  }
-  body.expect_end();
-
-  for (std::size_t f = 0; f < polygons.size(); ++f) {
-    for (const long long i : polygons[f]) {
-      if (i < 0 || i >= static_cast<long long>(positions.size())) {
-        const std::string msg = fmt::format("face {}: vertex index {} out of range (there are {})",
-                                            f, i, positions.size());
-        if (ascii) fail_at(path, polygon_lines[f], msg);
-        fail_file(path, msg);
-      }
-    }
-  }
-  Mesh m;
-  m.positions = std::move(positions);
-  for (const auto& poly : polygons) {
-    std::vector<int> corners(poly.begin(), poly.end());
-    fan(corners, m.triangles);
-  }
-  const std::vector<Vec3> computed = area_weighted_normals(m.positions, m.triangles);
-  m.normals.resize(m.positions.size());
-  for (std::size_t i = 0; i < m.positions.size(); ++i) {
-    m.normals[i] = has_normals ? normalized_or(normals[i], computed[i]) : computed[i];
-  }
-  return m;
-}
-
 Mesh read_mesh(const fs::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".obj") return read_obj(path);
-  if (ext == ".ply") return read_ply(path);
   if (ext == ".bpt") return read_teapot_bpt(path, kTeapotDefaultResolution);
-  fail_file(path, "unknown mesh format (expected .obj, .ply or .bpt)");
+  if (ext == ".ply") fail_file(path, "PLY is not read (convert it to OBJ, e.g. with MeshLab)");
+  fail_file(path, "unknown mesh format (expected .obj or .bpt)");
 }
 
 Box bounding_box(const Mesh& m) {

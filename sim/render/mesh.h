@@ -1,6 +1,6 @@
 // Triangle meshes for the renderer: the built-in test objects of the seeds (Kuijk–Blake's
 // octahedron spheres, Vlasic's triangle, dodecahedron, 40-triangle sphere and Utah teapot) and
-// readers for Wavefront OBJ, PLY and the Bézier-patch teapot format (.bpt).
+// readers for Wavefront OBJ (through tinyobjloader) and the Bézier-patch teapot format (.bpt).
 //
 // Conventions shared by everything here:
 //  - right-handed coordinates, +y up; the viewer of the built-in scenes sits on +z;
@@ -112,26 +112,20 @@ inline constexpr int kTeapotDefaultResolution = 8;
 
 // ---- Mesh files ----
 
-// Wavefront OBJ: `v x y z [w]` (w ignored), `vn x y z`, `f` with corners `i`, `i/j`, `i//k` or
-// `i/j/k` (1-based, negative = relative to the end of the list so far); polygons are
-// fan-triangulated from their first corner. Everything else (vt, o, g, s, usemtl, mtllib, l,
-// comments, unknown statements) is ignored. A corner with a normal gets it (normalized); corners
-// without one get the area-weighted vertex normal of their position. Throws
-// Error("<file>:<line>: <what>") for a malformed number or index, an index out of range, a face
-// with fewer than 3 corners; Error("<file>: no triangles") for a file without faces.
+// Wavefront OBJ, parsed by tinyobjloader: `v x y z` (anything after z ignored), `vn x y z`, `f`
+// with corners `i`, `i/j`, `i//k` or `i/j/k` (1-based, negative = relative to the end of the
+// list so far); polygons are fan-triangulated from their first corner. Everything else (vt, o,
+// g, s, usemtl, mtllib, l, p, comments, unknown statements) is ignored; so is a malformed number,
+// which tinyobjloader reads as 0. A corner with a normal gets it (normalized); corners without
+// one get the area-weighted vertex normal of their position; vertices are the distinct
+// (position, normal) pairs in order of first use. Throws Error("<file>:<line>: <what>") for a
+// malformed `f`, `l` or `p` statement (an index that is 0 or no number), Error("<file>: <what>")
+// for an index out of range, a face with fewer than 3 or more than 255 corners, and a file
+// without faces.
 [[nodiscard]] Mesh read_obj(const std::filesystem::path& path);
 
-// PLY 1.0, ascii or binary_little_endian: element `vertex` with float or integer properties x,
-// y, z (nx, ny, nz optional, all three or none; other properties skipped); element `face` with
-// a list property vertex_indices (or vertex_index) of any integer count and index types
-// (polygons fan-triangulated, other face properties skipped); other elements skipped. Missing
-// normals are computed as in read_obj. Throws Error("<file>:<line>: <what>") for a malformed
-// header or ascii body, Error("<file>: <what>") for binary data (truncated, index out of range)
-// and for binary_big_endian ("unsupported").
-[[nodiscard]] Mesh read_ply(const std::filesystem::path& path);
-
-// By extension, case-insensitive: .obj -> read_obj, .ply -> read_ply, .bpt -> read_teapot_bpt at
-// kTeapotDefaultResolution. Error otherwise.
+// By extension, case-insensitive: .obj -> read_obj, .bpt -> read_teapot_bpt at
+// kTeapotDefaultResolution. Error otherwise (PLY is not read: docs/render.md says why).
 [[nodiscard]] Mesh read_mesh(const std::filesystem::path& path);
 
 // The axis-aligned bounding box of the positions. Error for an empty mesh.

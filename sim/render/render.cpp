@@ -1,6 +1,7 @@
 #include "sim/render/render.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -26,6 +27,7 @@
 #include "sim/cosim/rtl_plugin.h"
 #include "sim/pipelines/registry.h"
 #include "sim/render/frame.h"
+#include "sim/render/plot.h"
 #include "sim/render/scene.h"
 #include "sim/render/seed_methods.h"
 
@@ -907,28 +909,73 @@ std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path
   const auto path = [&](std::string_view suffix) {
     return dir / fmt::format("{}_{}", r.scene, suffix);
   };
-  std::vector<std::vector<Image>> cells;
-  std::vector<std::string> labels;
-  std::vector<Curve> curves{
-      {r.reference.method + " (reference)", illumination_row(r.reference.image, row)}};
+  // The reference is a row and a curve of its own unless a float rendering of the same method
+  // (the same image) is among the results: that one is then marked as the reference.
+  const auto is_reference = [&](const MethodResult& m) {
+    return m.method == r.reference.method && m.backend == Backend::float_ref &&
+           m.image == r.reference.image;
+  };
+  const bool reference_listed = std::any_of(r.results.begin(), r.results.end(), is_reference);
+  const auto plain_label = [](const MethodResult& m) {
+    return fmt::format("{} [{}]", m.method, backend_name(m.backend));
+  };
+  const auto label = [&](const MethodResult& m) {
+    return plain_label(m) + (is_reference(m) ? " (reference)" : "");
+  };
+  // Grid (scripts/plot.py grid): one row per method, image and difference; the reference's image
+  // goes to a temporary file for it.
+  const fs::path reference_png =
+      dir / fmt::format(".{}_reference.tmp.{}.png", r.scene, static_cast<long>(getpid()));
+  struct Remove {
+    fs::path p;
+    ~Remove() {
+      std::error_code e;
+      fs::remove(p, e);
+    }
+  } remove_reference{reference_png};
+  std::vector<std::string> grid{"--title", r.scene + r.settings, "--columns", "image",
+                                fmt::format("difference from {} (eq. 6.2)", r.reference.method)};
+  if (!reference_listed) {
+    write_png(r.reference.image, reference_png);
+    grid.insert(grid.end(),
+                {"--row", plain_label(r.reference) + " (reference)", reference_png.string(), "-"});
+  }
+  // Scanline (scripts/plot.py scanline): eq. 6.3 along the row, one column per curve.
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> curves;
+  if (!reference_listed) {
+    names.push_back(plain_label(r.reference) + " (reference)");
+    curves.push_back(illumination_row(r.reference.image, row));
+  }
   for (const MethodResult& m : r.results) {
     const Image diff = difference_image(r.reference.image, m.image);
     write_png(m.image, path(m.method + ".png"));
     write_png(diff, path(m.method + "_diff.png"));
     written.push_back(path(m.method + ".png"));
     written.push_back(path(m.method + "_diff.png"));
-    cells.push_back({m.image, diff});
-    labels.push_back(fmt::format("{} [{}]", m.method, backend_name(m.backend)));
-    curves.push_back({labels.back(), illumination_row(m.image, row)});
+    grid.insert(grid.end(), {"--row", label(m), path(m.method + ".png").string(),
+                             path(m.method + "_diff.png").string()});
+    names.push_back(label(m));
+    curves.push_back(illumination_row(m.image, row));
   }
-  const Image g = grid(cells, labels,
-                       {"image", fmt::format("difference from {} (eq. 6.2)", r.reference.method)},
-                       fmt::format("{}", r.scene));
-  write_png(g, path("grid.png"));
+  OutputFile scanline_csv(path("scanline.csv"));
+  std::string data = "x";
+  for (const std::string& n : names) data += "," + n;
+  data += "\n";
+  for (std::size_t x = 0; x < curves.front().size(); ++x) {
+    data += fmt::format("{}", x);
+    for (const auto& c : curves) data += fmt::format(",{:.6f}", c[x]);
+    data += "\n";
+  }
+  std::fputs(data.c_str(), scanline_csv.get());
+  scanline_csv.commit();
+  written.push_back(path("scanline.csv"));
+  plot_figure("grid", grid, path("grid.png"));
   written.push_back(path("grid.png"));
-  write_png(
-      plot_curves(curves, fmt::format("{}: illumination along row {} (eq. 6.3)", r.scene, row)),
-      path("scanline.png"));
+  plot_figure("scanline",
+              {"--csv", path("scanline.csv").string(), "--title",
+               fmt::format("{}: illumination along row {} (eq. 6.3){}", r.scene, row, r.settings)},
+              path("scanline.png"));
   written.push_back(path("scanline.png"));
 
   OutputFile csv(path("metrics.csv"));

@@ -91,9 +91,10 @@ using RenderProgress = std::function<void(std::string_view, std::uint64_t, std::
 // Throws Error with one line naming the problem.
 [[nodiscard]] RenderResult render(const RenderOptions& options, const RenderProgress& progress);
 
-// Writes into `dir`: <scene>_<method>.png per method, <scene>_grid.png (labelled rows),
-// <scene>_<method>_diff.png (eq. 6.2, against the reference), <scene>_scanline.png (eq. 6.3 for
-// the result's scanline), <scene>_metrics.csv and .md. Returns the paths.
+// Writes into `dir`: <scene>_<method>.png per method, <scene>_<method>_diff.png (eq. 6.2,
+// against the reference), <scene>_scanline.csv (eq. 6.3 along the result's scanline, a column
+// per curve), the figures <scene>_grid.png (labelled rows) and <scene>_scanline.png drawn by
+// scripts/plot.py (sim/render/plot.h), <scene>_metrics.csv and .md. Returns the paths.
 std::vector<std::filesystem::path> write_render_outputs(const RenderResult& r,
                                                         const std::filesystem::path& dir);
 

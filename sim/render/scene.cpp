@@ -4,11 +4,10 @@
 
 #include <toml++/toml.h>
 #include <cmath>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "base/error.h"
+#include "base/file_util.h"
 
 namespace phongsim {
 namespace fs = std::filesystem;
@@ -192,13 +191,10 @@ Light SceneParser::light(const toml::table& t) const {
 }
 
 Scene SceneParser::parse() {
-  std::ifstream in(path_, std::ios::binary);
-  if (!in) throw Error(fmt::format("{}: cannot read scene file", origin_));
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = read_file(path_, "scene file");
   toml::table root;
   try {
-    root = toml::parse(text.str(), origin_);
+    root = toml::parse(text, origin_);
   } catch (const toml::parse_error& e) {
     throw Error(fmt::format("{}:{}: {}", origin_, e.source().begin.line, e.description()));
   }

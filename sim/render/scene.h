@@ -70,7 +70,7 @@ struct Scene {
 
 // Reads a scene file (TOML):
 //   name = "..."                      optional; default: the file's stem
-//   mesh = "path.obj|ply|bpt"          relative to the scene file's directory, or
+//   mesh = "path.obj|bpt"          relative to the scene file's directory, or
 //   builtin = "teapot"                 the mesh of a built-in scene (exactly one of the two)
 //   resolution = 8                     only with builtin = "teapot": its tessellation, 1..256
 //   normalize = true                   normalize_to_unit_box; default true for mesh files,
