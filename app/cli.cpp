@@ -100,8 +100,8 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     if (t.rtl.empty()) {
       rtl.label = fmt::format("built-in {} ({})", design.top, plugin.key);
     } else {
-      rtl.label =
-          fmt::format("{} from --rtl, {} files ({})", design.top, design.files.size(), plugin.key);
+      rtl.label = fmt::format("{} from --rtl, {} file{} ({})", design.top, design.files.size(),
+                              design.files.size() == 1 ? "" : "s", plugin.key);
       rtl.options = " --rtl";
       for (const auto& p : t.rtl) rtl.options += " " + quoted(p);
       if (!t.top.empty()) rtl.options += " --top " + quoted(t.top);

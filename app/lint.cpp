@@ -19,7 +19,8 @@ int run(const Target& t) {
     fmt::print("LINT FAIL {} ({}): verilator exit {}\n", l.cfg.origin(), d.top, r.exit_code);
     return 1;
   }
-  fmt::print("lint clean: {} ({}, {} files)\n", l.cfg.origin(), d.top, d.files.size());
+  fmt::print("lint clean: {} ({}, {} file{})\n", l.cfg.origin(), d.top, d.files.size(),
+             d.files.size() == 1 ? "" : "s");
   return 0;
 }
 
