@@ -30,6 +30,7 @@ endfunction()
 set(PHONGSIM_RTL_COMMON
     rtl/common/fx_pkg.sv
     rtl/common/fx_resize.sv
+    rtl/common/fx_rq.sv
     rtl/common/fx_add.sv
     rtl/common/fx_sub.sv
     rtl/common/fx_mul.sv
@@ -37,6 +38,7 @@ set(PHONGSIM_RTL_COMMON
     rtl/common/fx_abs.sv
     rtl/common/fx_scale.sv
     rtl/common/fx_clamp01.sv
+    rtl/common/fx_dot3.sv
     rtl/common/pipe_ctrl.sv
     rtl/common/pipe_delay.sv
     rtl/common/fdiff_acc.sv
@@ -47,8 +49,8 @@ set(PHONGSIM_RTL_lirp_TOP lirp_unit)
 set(PHONGSIM_RTL_lirp_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_core.sv rtl/lirp/lirp_unit.sv)
 
 set(PHONGSIM_RTL_lyon_TOP lyon_top)
-set(PHONGSIM_RTL_lyon_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_core.sv rtl/lyon/lyon_dot3.sv
-    rtl/lyon/lyon_norm.sv rtl/lyon/lyon_x.sv rtl/lyon/lyon_shape.sv rtl/lyon/lyon_top.sv)
+set(PHONGSIM_RTL_lyon_SOURCES ${PHONGSIM_RTL_COMMON} rtl/lirp/lirp_core.sv rtl/lyon/lyon_norm.sv
+    rtl/lyon/lyon_x.sv rtl/lyon/lyon_shape.sv rtl/lyon/lyon_top.sv)
 
 set(PHONGSIM_RTL_kb_TOP kb_engine)
 set(PHONGSIM_RTL_kb_SOURCES ${PHONGSIM_RTL_COMMON} rtl/kb/kb_engine.sv)

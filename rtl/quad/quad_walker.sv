@@ -165,8 +165,8 @@ module quad_walker #(
 
   // ---- Channels ----
   logic [3*OutW-1:0] rgb;
-  logic [CoordW-1:0] k_offset;
-  assign k_offset = lower[CoordW-1:0] - x0_q;
+  logic [CoordW-1:0] i0;  // the row's first pixel, as an offset from the box's left column
+  assign i0 = lower[CoordW-1:0] - x0_q;
   for (genvar ch = 0; ch < 3; ch++) begin : g_channel
     logic [ChanW-1:0] word;
     assign word = head[4*CoordW+3*EdgeW+ch*ChanW+:ChanW];
@@ -174,7 +174,7 @@ module quad_walker #(
       .AccFmt  (AccFmt),
       .OutFmt  (OutFmt),
       .OutRound(OutRound),
-      .KBits   (CoordW)
+      .I0Bits  (CoordW)
     ) u_channel (
       .clk_i,
       .load_i     (load),
@@ -185,7 +185,7 @@ module quad_walker #(
       .b_i        (word[4*AccW+:AccW]),
       .c_i        (word[5*AccW+:AccW]),
       .row_start_i(row_start),
-      .k_i        (k_offset),
+      .i0_i       (i0),
       .pixel_i    (fire),
       .row_next_i (row_next),
       .value_o    (rgb[ch*OutW+:OutW])
