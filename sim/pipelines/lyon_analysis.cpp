@@ -131,9 +131,9 @@ std::string lyon_stage_formats(const LyonModel& model) {
   }
   row("10", "x/2^k (exact)", s.xk.fmt);
   row("10", "x/2^k (requantized)", s.xf.fmt);
-  row("11", "t = 1 - x/2^k", s.sq[0].fmt);
+  row("11", "sq_0 = 1 - x/2^k", s.sq[0].fmt);
   for (int j = 1; j <= f.k; ++j)
-    row(std::to_string(11 + j), fmt::format("t^{}", 1 << j), s.sq[j].fmt);
+    row(std::to_string(11 + j), fmt::format("sq_{} = sq_0^{}", j, 1 << j), s.sq[j].fmt);
   row("out", "spec", s.spec.fmt);
   return out;
 }
