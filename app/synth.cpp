@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "base/error.h"
 #include "sim/explore/synth.h"
 
 namespace phongsim::cli {
@@ -11,11 +12,18 @@ namespace {
 struct SynthCli {
   Target target;
   bool ice40 = false;
+  bool check = false;
 };
 
 int run(const SynthCli& c) {
   const Loaded l = load(c.target);
   const RtlDesign d = design_of(l, c.target);
+  if (c.check) {
+    if (c.ice40) throw Error("--check and --ice40 exclude each other");
+    check_synthesizable(d, l.cfg.origin());
+    fmt::print("{} ({}): synthesizes, no latches\n", l.cfg.origin(), d.top);
+    return 0;
+  }
   const SynthResult r =
       synthesize(d, l.cfg.origin(), SynthOptions{.generic = true, .ice40 = c.ice40}, stderr);
   fmt::print("{} ({}): {} cells, ~{} transistors, no latches{}", l.cfg.origin(), d.top, r.cells,
@@ -40,6 +48,9 @@ void add_synth(CLI::App& app, Action& action) {
   c->target.add_options(*cmd);
   cmd->add_flag("--ice40", c->ice40,
                 "also iCE40 synthesis and nextpnr place and route (LUTs, DSPs, fmax)");
+  cmd->add_flag("--check", c->check,
+                "only check that it synthesizes without latches (Yosys synth, no flattening, no "
+                "statistics: seconds instead of minutes)");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });
 }
 

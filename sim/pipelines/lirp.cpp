@@ -132,8 +132,8 @@ const PipelineInfo& lirp_pipeline() {
                    "assign ready[i] = out_ready_i | ~valid_q[i];",
                    "assign ready[i] = out_ready_i | valid_q[i];",
                    "last pipeline stage accepts while full: overwrites a stalled transaction"},
-                  {"sub-order", "default", "rtl/lirp/lirp_core.sv", ".a_i   (p1_i[c*PW+:PW]),",
-                   ".a_i   (p0_i[c*PW+:PW]),", "difference p0 - p0 instead of p1 - p0"}},
+                  {"sub-order", "default", "rtl/lirp/lirp_core.sv", ".a_i    (p1_i[c*PW+:PW]),",
+                   ".a_i    (p0_i[c*PW+:PW]),", "difference delta = p0 - p0 instead of p1 - p0"}},
   };
   return info;
 }
