@@ -7,6 +7,7 @@
 
 #include "base/error.h"
 #include "base/paths.h"
+#include "sim/cosim/icarus_dut.h"
 
 namespace phongsim::cli {
 namespace fs = std::filesystem;
@@ -53,6 +54,14 @@ void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
                  "refused if any source it was built from has changed since");
 }
 
+void Target::add_simulator_option(CLI::App& cmd) {
+  cmd.add_option("--simulator", simulator,
+                 "verilator (the plugin), or icarus: the same design compiled by Icarus Verilog "
+                 "(four-state: X or Z on an output is a failure; docs/cosim.md)")
+      ->check(CLI::IsMember({"verilator", "icarus"}))
+      ->capture_default_str();
+}
+
 Loaded load(const Target& t) {
   if (t.config.empty() && t.pipeline.empty()) {
     throw Error("give a pipeline or --config (see phongsim list)");
@@ -94,6 +103,17 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     rtl.make_dut = [library, model]() { return library->create(*model); };
     rtl.label = fmt::format("plugin {}", t.plugin);
     rtl.options = " --rtl-plugin " + quoted(t.plugin);
+    return rtl;
+  }
+  if (t.simulator == "icarus") {
+    if (!t.plugin.empty())
+      throw Error("--rtl-plugin is a Verilator build: not with --simulator icarus");
+    rtl.make_dut = icarus_duts(design, *l.model, stderr);
+    rtl.label = t.rtl.empty() ? fmt::format("built-in {} in Icarus Verilog", design.top)
+                              : fmt::format("{} from --rtl in Icarus Verilog", design.top);
+    rtl.options = " --simulator icarus";
+    for (const auto& p : t.rtl) rtl.options += (&p == &t.rtl.front() ? " --rtl " : " ") + quoted(p);
+    if (!t.top.empty()) rtl.options += " --top " + quoted(t.top);
     return rtl;
   }
   RtlPlugin plugin;

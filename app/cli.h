@@ -37,13 +37,16 @@ struct Target {
   std::string config;
   std::vector<std::string> configs;  // several --config, where the command takes a list
   bool no_build = false;
-  std::vector<std::string> rtl;  // the user's RTL: files and folders (--rtl)
-  std::string top;               // its top module (--top; default: the built-in top's name)
-  std::string plugin;            // a plugin file given by hand (--rtl-plugin)
+  std::vector<std::string> rtl;         // the user's RTL: files and folders (--rtl)
+  std::string top;                      // its top module (--top; default: the built-in top's name)
+  std::string plugin;                   // a plugin file given by hand (--rtl-plugin)
+  std::string simulator = "verilator";  // or icarus (--simulator)
 
   // `rtl_options`: also --rtl, --top, --rtl-plugin and --no-build. `many_configs`: --config may
   // be given several times (into `configs`).
   void add_options(CLI::App& cmd, bool rtl_options = true, bool many_configs = false);
+  // --simulator, for the commands that run the RTL vector by vector (cosim, eval).
+  void add_simulator_option(CLI::App& cmd);
 };
 
 struct Loaded {

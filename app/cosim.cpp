@@ -149,6 +149,9 @@ int run(CosimCli& c) {
   for (const auto& s : sources) source_patterns.push_back(StallPattern::parse(s));
   for (const auto& s : sinks) sink_patterns.push_back(StallPattern::parse(s));
   const std::size_t total = configs.size() * sources.size() * sinks.size();
+  if (!c.trace.empty() && c.target.simulator == "icarus") {
+    throw Error("--trace is not available with --simulator icarus (use the Verilator build)");
+  }
   if (total > 1 && (!c.json.empty() || !c.trace.empty() || *c.index_opt)) {
     throw Error(
         "--json, --trace and --vector-index take one run: give one --config and one "
@@ -231,6 +234,7 @@ void add_cosim(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "cosim", "Co-simulate model and Verilated RTL on directed + seeded random vectors");
   c->target.add_options(*cmd, true, true);
+  c->target.add_simulator_option(*cmd);
   c->vectors_opt = add_count(*cmd, "--vectors", c->vectors,
                              "random vectors after the directed corners (default: the "
                              "pipeline's, about a million outputs)",

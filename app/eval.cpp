@@ -22,8 +22,9 @@ int run_eval(const EvalCli& c) {
   DutFactory make_dut;
   if (c.backend == "rtl") {
     make_dut = rtl_of(l, c.target).make_dut;
-  } else if (!c.target.rtl.empty() || !c.target.plugin.empty()) {
-    throw Error("--rtl and --rtl-plugin need --backend rtl");
+  } else if (!c.target.rtl.empty() || !c.target.plugin.empty() ||
+             c.target.simulator != "verilator") {
+    throw Error("--rtl, --rtl-plugin and --simulator need --backend rtl");
   }
   const std::size_t rows = eval_csv(*l.model, make_dut, c.in, c.out, c.real);
   fmt::print("{} output rows from {} ({} backend, {}) -> {}\n", rows, c.in, c.backend,
@@ -69,6 +70,7 @@ void add_eval(CLI::App& app, Action& action) {
   auto* cmd =
       app.add_subcommand("eval", "Evaluate a CSV of input vectors through the model or the RTL");
   c->target.add_options(*cmd);
+  c->target.add_simulator_option(*cmd);
   cmd->add_option("--backend", c->backend, "model or rtl")
       ->check(CLI::IsMember({"model", "rtl"}))
       ->capture_default_str();

@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build   # C++20 toolchain and build
   verilator zlib1g-dev                # RTL simulation (zlib for FST waveforms)
+  iverilog                            # the second simulator (--simulator icarus)
   libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
   libpng-dev                          # PNG images (sim/render/image.h)
   libtinyobjloader-dev                # OBJ meshes (sim/render/mesh.h)
@@ -13,6 +14,7 @@ packages=(
   python3-matplotlib                  # every figure: grids, scanline and Pareto plots (scripts/plot.py)
   pybind11-dev python3-dev python3-numpy  # the Python module (python/) and its example
   yosys                               # synthesis checks (no latches) of every RTL top
+  z3                                  # bounded proofs of the stream primitives (yosys-smtbmc)
   nextpnr-ice40                       # iCE40 place and route: fmax of a configuration (sim/explore/synth.h)
   clang-format                        # style check in the test suite
 )

@@ -20,7 +20,7 @@
 // Assertions (checked by tests/stream_rtl_test.cpp): f_o and d1_o change only on load_i or
 // step_i, and then to exactly the sums above.
 module fdiff_acc #(
-  parameter int unsigned Width = 32
+  parameter bit [31:0] Width = 32
 ) (
   input  logic             clk_i,
   input  logic             load_i,

@@ -10,11 +10,11 @@
 //
 // Assertions: none (no parameter value is invalid).
 module fx_abs #(
-  parameter int unsigned AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
   // Derived, do not override.
-  localparam int unsigned AbsFmt = fx_pkg::fx_abs_fmt(AFmt),
-  localparam int unsigned AW     = fx_pkg::fx_width(AFmt),
-  localparam int unsigned AbsW   = fx_pkg::fx_width(AbsFmt)
+  localparam bit [31:0] AbsFmt = fx_pkg::fx_abs_fmt(AFmt),
+  localparam bit [31:0] AW     = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] AbsW   = fx_pkg::fx_width(AbsFmt)
 ) (
   input  logic [  AW-1:0] a_i,
   output logic [AbsW-1:0] abs_o

@@ -11,13 +11,13 @@
 //
 // Assertions: none (no parameter value is invalid).
 module fx_add #(
-  parameter int unsigned AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned BFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] BFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
   // Derived, do not override.
-  localparam int unsigned SumFmt = fx_pkg::fx_add_fmt(AFmt, BFmt),
-  localparam int unsigned AW     = fx_pkg::fx_width(AFmt),
-  localparam int unsigned BW     = fx_pkg::fx_width(BFmt),
-  localparam int unsigned SumW   = fx_pkg::fx_width(SumFmt)
+  localparam bit [31:0] SumFmt = fx_pkg::fx_add_fmt(AFmt, BFmt),
+  localparam bit [31:0] AW     = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] BW     = fx_pkg::fx_width(BFmt),
+  localparam bit [31:0] SumW   = fx_pkg::fx_width(SumFmt)
 ) (
   input  logic [  AW-1:0] a_i,
   input  logic [  BW-1:0] b_i,

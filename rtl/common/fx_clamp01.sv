@@ -11,15 +11,15 @@
 //
 // Assertions: none (no parameter value is invalid).
 module fx_clamp01 #(
-  parameter int unsigned AFmt = fx_pkg::fx_fmt(1'b1, 2, 16),
+  parameter bit [31:0] AFmt = fx_pkg::fx_fmt(1'b1, 2, 16),
   // Derived, do not override.
-  localparam int unsigned AW  = fx_pkg::fx_width(AFmt)
+  localparam bit [31:0] AW  = fx_pkg::fx_width(AFmt)
 ) (
   input  logic [AW-1:0] a_i,
   output logic [AW-1:0] clamped_o
 );
 
-  localparam int unsigned Frac = fx_pkg::fx_frac(AFmt);
+  localparam bit [31:0] Frac = fx_pkg::fx_frac(AFmt);
   logic negative;
   if (fx_pkg::fx_signed(AFmt)) begin : g_signed
     assign negative = a_i[AW-1];

@@ -14,24 +14,24 @@
 //
 // Assertions: Round is checked at elaboration (fx_rq).
 module fx_dot3 #(
-  parameter int unsigned AFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned BFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned OutFmt  = fx_pkg::fx_fmt(1'b1, 1, 12),
-  parameter int unsigned Round   = fx_pkg::FxHalfEven,
+  parameter bit [31:0] AFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] BFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] OutFmt  = fx_pkg::fx_fmt(1'b1, 1, 12),
+  parameter bit [31:0] Round   = fx_pkg::FxHalfEven,
   // Derived, do not override.
-  localparam int unsigned AW     = fx_pkg::fx_width(AFmt),
-  localparam int unsigned BW     = fx_pkg::fx_width(BFmt),
-  localparam int unsigned OutW   = fx_pkg::fx_width(OutFmt)
+  localparam bit [31:0] AW     = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] BW     = fx_pkg::fx_width(BFmt),
+  localparam bit [31:0] OutW   = fx_pkg::fx_width(OutFmt)
 ) (
   input  logic [3*AW-1:0] a_i,
   input  logic [3*BW-1:0] b_i,
   output logic [OutW-1:0] dot_o
 );
 
-  localparam int unsigned ProdFmt = fx_pkg::fx_mul_fmt(AFmt, BFmt);
-  localparam int unsigned Sum2Fmt = fx_pkg::fx_add_fmt(ProdFmt, ProdFmt);
-  localparam int unsigned Sum3Fmt = fx_pkg::fx_add_fmt(Sum2Fmt, ProdFmt);
-  localparam int unsigned ProdW   = fx_pkg::fx_width(ProdFmt);
+  localparam bit [31:0] ProdFmt = fx_pkg::fx_mul_fmt(AFmt, BFmt);
+  localparam bit [31:0] Sum2Fmt = fx_pkg::fx_add_fmt(ProdFmt, ProdFmt);
+  localparam bit [31:0] Sum3Fmt = fx_pkg::fx_add_fmt(Sum2Fmt, ProdFmt);
+  localparam bit [31:0] ProdW   = fx_pkg::fx_width(ProdFmt);
 
   logic [3*ProdW-1:0]                   prod;
   logic [fx_pkg::fx_width(Sum2Fmt)-1:0] sum2;

@@ -10,13 +10,13 @@
 //
 // Assertions: none (no parameter value is invalid).
 module fx_mul #(
-  parameter int unsigned AFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned BFmt    = fx_pkg::fx_fmt(1'b0, 1, 10),
+  parameter bit [31:0] AFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] BFmt    = fx_pkg::fx_fmt(1'b0, 1, 10),
   // Derived, do not override.
-  localparam int unsigned ProdFmt = fx_pkg::fx_mul_fmt(AFmt, BFmt),
-  localparam int unsigned AW      = fx_pkg::fx_width(AFmt),
-  localparam int unsigned BW      = fx_pkg::fx_width(BFmt),
-  localparam int unsigned ProdW   = fx_pkg::fx_width(ProdFmt)
+  localparam bit [31:0] ProdFmt = fx_pkg::fx_mul_fmt(AFmt, BFmt),
+  localparam bit [31:0] AW      = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] BW      = fx_pkg::fx_width(BFmt),
+  localparam bit [31:0] ProdW   = fx_pkg::fx_width(ProdFmt)
 ) (
   input  logic [   AW-1:0] a_i,
   input  logic [   BW-1:0] b_i,

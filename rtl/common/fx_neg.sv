@@ -10,11 +10,11 @@
 //
 // Assertions: none (no parameter value is invalid).
 module fx_neg #(
-  parameter int unsigned AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
   // Derived, do not override.
-  localparam int unsigned NegFmt = fx_pkg::fx_neg_fmt(AFmt),
-  localparam int unsigned AW     = fx_pkg::fx_width(AFmt),
-  localparam int unsigned NegW   = fx_pkg::fx_width(NegFmt)
+  localparam bit [31:0] NegFmt = fx_pkg::fx_neg_fmt(AFmt),
+  localparam bit [31:0] AW     = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] NegW   = fx_pkg::fx_width(NegFmt)
 ) (
   input  logic [  AW-1:0] a_i,
   output logic [NegW-1:0] neg_o

@@ -13,13 +13,13 @@ package fx_pkg;
   /* verilator lint_off UNUSEDPARAM */
 
   // Rounding when fraction bits are dropped (phongsim::fx::Round).
-  localparam int unsigned FxTruncate = 0;  // floor
-  localparam int unsigned FxHalfUp   = 1;  // nearest, ties toward +infinity
-  localparam int unsigned FxHalfEven = 2;  // nearest, ties to even (convergent)
+  localparam bit [31:0] FxTruncate = 0;  // floor
+  localparam bit [31:0] FxHalfUp   = 1;  // nearest, ties toward +infinity
+  localparam bit [31:0] FxHalfEven = 2;  // nearest, ties to even (convergent)
 
   // Overflow handling (phongsim::fx::Overflow).
-  localparam int unsigned FxWrap     = 0;  // keep the low bits
-  localparam int unsigned FxSaturate = 1;  // clamp to the format's range
+  localparam bit [31:0] FxWrap     = 0;  // keep the low bits
+  localparam bit [31:0] FxSaturate = 1;  // clamp to the format's range
   /* verilator lint_on UNUSEDPARAM */
 
   function automatic int unsigned fx_fmt(bit is_signed, int unsigned int_bits,

@@ -20,26 +20,26 @@
 //
 // Assertions: Round and Overflow are checked at elaboration (end of the module).
 module fx_resize #(
-  parameter int unsigned InFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned Round    = fx_pkg::FxHalfEven,
-  parameter int unsigned Overflow = fx_pkg::FxSaturate,
+  parameter bit [31:0] InFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] OutFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] Round    = fx_pkg::FxHalfEven,
+  parameter bit [31:0] Overflow = fx_pkg::FxSaturate,
   // Derived, do not override.
-  localparam int unsigned InW     = fx_pkg::fx_width(InFmt),
-  localparam int unsigned OutW    = fx_pkg::fx_width(OutFmt)
+  localparam bit [31:0] InW     = fx_pkg::fx_width(InFmt),
+  localparam bit [31:0] OutW    = fx_pkg::fx_width(OutFmt)
 ) (
   input  logic [ InW-1:0] in_i,
   output logic [OutW-1:0] out_o
 );
 
-  localparam int unsigned InFrac  = fx_pkg::fx_frac(InFmt);
-  localparam int unsigned OutFrac = fx_pkg::fx_frac(OutFmt);
-  localparam int unsigned Grow    = OutFrac > InFrac ? OutFrac - InFrac : 0;
-  localparam int unsigned Drop    = InFrac > OutFrac ? InFrac - OutFrac : 0;
+  localparam bit [31:0] InFrac  = fx_pkg::fx_frac(InFmt);
+  localparam bit [31:0] OutFrac = fx_pkg::fx_frac(OutFmt);
+  localparam bit [31:0] Grow    = OutFrac > InFrac ? OutFrac - InFrac : 0;
+  localparam bit [31:0] Drop    = InFrac > OutFrac ? InFrac - OutFrac : 0;
   // Internal signed width: the aligned input, one bit to hold an unsigned input as signed and
   // one for the rounding carry. Comparison width: also holds the output bounds with a sign.
-  localparam int unsigned IntW    = InW + Grow + 2;
-  localparam int unsigned CmpW    = fx_pkg::fx_max(IntW, OutW + 1);
+  localparam bit [31:0] IntW    = InW + Grow + 2;
+  localparam bit [31:0] CmpW    = fx_pkg::fx_max(IntW, OutW + 1);
 
   logic signed [IntW-1:0] in_ext, aligned, rounded;
   logic signed [CmpW-1:0] wide;
@@ -92,11 +92,13 @@ module fx_resize #(
   end
 
   // Assertions: elaboration-time parameter checks.
+`ifndef __ICARUS__  // Icarus 11 has no elaboration-time $error
   if (Round > fx_pkg::FxHalfEven) begin : g_bad_round
     $error("fx_resize: Round must be fx_pkg::FxTruncate, fx_pkg::FxHalfUp or fx_pkg::FxHalfEven");
   end
   if (Overflow > fx_pkg::FxSaturate) begin : g_bad_overflow
     $error("fx_resize: Overflow must be fx_pkg::FxWrap or fx_pkg::FxSaturate");
   end
+`endif
 
 endmodule

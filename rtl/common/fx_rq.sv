@@ -16,12 +16,12 @@
 //
 // Assertions: Round is checked at elaboration (fx_resize).
 module fx_rq #(
-  parameter int unsigned InFmt  = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned OutFmt = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned Round  = fx_pkg::FxHalfEven,
+  parameter bit [31:0] InFmt  = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] OutFmt = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] Round  = fx_pkg::FxHalfEven,
   // Derived, do not override.
-  localparam int unsigned InW   = fx_pkg::fx_width(InFmt),
-  localparam int unsigned OutW  = fx_pkg::fx_width(OutFmt)
+  localparam bit [31:0] InW   = fx_pkg::fx_width(InFmt),
+  localparam bit [31:0] OutW  = fx_pkg::fx_width(OutFmt)
 ) (
   input  logic [ InW-1:0] in_i,
   output logic [OutW-1:0] out_o

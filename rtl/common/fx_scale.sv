@@ -13,12 +13,12 @@
 //
 // Assertions: none (no parameter value is invalid).
 module fx_scale #(
-  parameter int unsigned AFmt     = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] AFmt     = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int          Shift    = 1,
   // Derived, do not override.
-  localparam int unsigned OutFmt  = fx_pkg::fx_scale_fmt(AFmt, Shift),
-  localparam int unsigned AW      = fx_pkg::fx_width(AFmt),
-  localparam int unsigned OutW    = fx_pkg::fx_width(OutFmt)
+  localparam bit [31:0] OutFmt  = fx_pkg::fx_scale_fmt(AFmt, Shift),
+  localparam bit [31:0] AW      = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] OutW    = fx_pkg::fx_width(OutFmt)
 ) (
   input  logic [  AW-1:0] a_i,
   output logic [OutW-1:0] scaled_o
@@ -26,7 +26,7 @@ module fx_scale #(
 
   // Zeros appended below the old LSB (only when Shift exceeds the fraction bits).
   localparam int          AFrac  = fx_pkg::fx_frac(AFmt);
-  localparam int unsigned Append = Shift > AFrac ? Shift - AFrac : 0;
+  localparam bit [31:0] Append = Shift > AFrac ? Shift - AFrac : 0;
 
   logic [OutW-1:0] extended;
   if (fx_pkg::fx_signed(AFmt)) begin : g_sign_extend

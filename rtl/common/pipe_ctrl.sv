@@ -21,7 +21,7 @@
 // out_valid_o stays high and the last stage's registers keep their value (en_o[Depth-1] low)
 // until out_ready_i; every accepted transaction leaves once, in order.
 module pipe_ctrl #(
-  parameter int unsigned Depth = 2
+  parameter bit [31:0] Depth = 2
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,

@@ -14,8 +14,8 @@
 // Assertions (checked by tests/stream_rtl_test.cpp): q_o is the d_i of the transaction the
 // pipe_ctrl's last spanned stage holds, and does not change while that stage's enable is low.
 module pipe_delay #(
-  parameter int unsigned Width = 8,
-  parameter int unsigned Depth = 1
+  parameter bit [31:0] Width = 8,
+  parameter bit [31:0] Depth = 1
 ) (
   input  logic             clk_i,
   input  logic [Depth-1:0] en_i,

@@ -20,7 +20,7 @@
 // out_valid_o stays high and out_data_o unchanged until out_ready_i; every accepted transaction
 // leaves once, in order, unchanged.
 module stream_skid #(
-  parameter int unsigned Width = 8
+  parameter bit [31:0] Width = 8
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,

@@ -23,15 +23,15 @@
 //
 // Assertions: none here (the stream top checks its handshake; lirp_unit.sv).
 module lirp_core #(
-  parameter int unsigned PFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned AFmt        = fx_pkg::fx_fmt(1'b0, 1, 10),
-  parameter int unsigned OutFmt      = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned OutRound    = fx_pkg::FxHalfEven,
-  parameter int unsigned OutOverflow = fx_pkg::FxSaturate,
+  parameter bit [31:0] PFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] AFmt        = fx_pkg::fx_fmt(1'b0, 1, 10),
+  parameter bit [31:0] OutFmt      = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] OutRound    = fx_pkg::FxHalfEven,
+  parameter bit [31:0] OutOverflow = fx_pkg::FxSaturate,
   // Derived, do not override.
-  localparam int unsigned PW         = fx_pkg::fx_width(PFmt),
-  localparam int unsigned AW         = fx_pkg::fx_width(AFmt),
-  localparam int unsigned OutW       = fx_pkg::fx_width(OutFmt)
+  localparam bit [31:0] PW         = fx_pkg::fx_width(PFmt),
+  localparam bit [31:0] AW         = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] OutW       = fx_pkg::fx_width(OutFmt)
 ) (
   input  logic              clk_i,
   input  logic [       1:0] en_i,
@@ -41,12 +41,12 @@ module lirp_core #(
   output logic [3*OutW-1:0] p_o
 );
 
-  localparam int unsigned DeltaFmt = fx_pkg::fx_sub_fmt(PFmt, PFmt);
-  localparam int unsigned ProdFmt  = fx_pkg::fx_mul_fmt(AFmt, DeltaFmt);
-  localparam int unsigned SumFmt   = fx_pkg::fx_add_fmt(PFmt, ProdFmt);
-  localparam int unsigned DeltaW   = fx_pkg::fx_width(DeltaFmt);
-  localparam int unsigned ProdW    = fx_pkg::fx_width(ProdFmt);
-  localparam int unsigned SumW     = fx_pkg::fx_width(SumFmt);
+  localparam bit [31:0] DeltaFmt = fx_pkg::fx_sub_fmt(PFmt, PFmt);
+  localparam bit [31:0] ProdFmt  = fx_pkg::fx_mul_fmt(AFmt, DeltaFmt);
+  localparam bit [31:0] SumFmt   = fx_pkg::fx_add_fmt(PFmt, ProdFmt);
+  localparam bit [31:0] DeltaW   = fx_pkg::fx_width(DeltaFmt);
+  localparam bit [31:0] ProdW    = fx_pkg::fx_width(ProdFmt);
+  localparam bit [31:0] SumW     = fx_pkg::fx_width(SumFmt);
 
   logic [3*DeltaW-1:0] delta_d, delta_q;
   logic [ 3*ProdW-1:0] prod_d, prod_q;

@@ -24,15 +24,15 @@
 //
 // Assertions (simulation only, below): an offered output stays valid and unchanged until taken.
 module lirp_unit #(
-  parameter int unsigned PFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned AFmt        = fx_pkg::fx_fmt(1'b0, 1, 10),
-  parameter int unsigned OutFmt      = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned OutRound    = fx_pkg::FxHalfEven,
-  parameter int unsigned OutOverflow = fx_pkg::FxSaturate,
+  parameter bit [31:0] PFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] AFmt        = fx_pkg::fx_fmt(1'b0, 1, 10),
+  parameter bit [31:0] OutFmt      = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] OutRound    = fx_pkg::FxHalfEven,
+  parameter bit [31:0] OutOverflow = fx_pkg::FxSaturate,
   // Derived, do not override.
-  localparam int unsigned PW         = fx_pkg::fx_width(PFmt),
-  localparam int unsigned AW         = fx_pkg::fx_width(AFmt),
-  localparam int unsigned OutW       = fx_pkg::fx_width(OutFmt)
+  localparam bit [31:0] PW         = fx_pkg::fx_width(PFmt),
+  localparam bit [31:0] AW         = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] OutW       = fx_pkg::fx_width(OutFmt)
 ) (
   input  logic            clk_i,
   input  logic            rst_ni,
@@ -102,7 +102,7 @@ module lirp_unit #(
     stalled_p_q <= out_p_o;
   end
   always_comb begin
-    if (stalled_q) begin
+    if (rst_ni && stalled_q) begin  // not in reset, whatever state power-up left
       assert (out_valid_o && out_p_o == stalled_p_q)
       else $error("lirp_unit: output changed or dropped while stalled");
     end

@@ -24,14 +24,14 @@
 //
 // Assertions: none (K is checked by lyon_top).
 module lyon_shape #(
-  parameter int unsigned K       = 2,
-  parameter int unsigned XfFmt   = fx_pkg::fx_fmt(1'b0, 0, 16),
-  parameter int unsigned SqFmt   = fx_pkg::fx_fmt(1'b0, 1, 16),
-  parameter int unsigned SpecFmt = fx_pkg::fx_fmt(1'b0, 1, 12),
-  parameter int unsigned Round   = fx_pkg::FxHalfEven,
+  parameter bit [31:0] K       = 2,
+  parameter bit [31:0] XfFmt   = fx_pkg::fx_fmt(1'b0, 0, 16),
+  parameter bit [31:0] SqFmt   = fx_pkg::fx_fmt(1'b0, 1, 16),
+  parameter bit [31:0] SpecFmt = fx_pkg::fx_fmt(1'b0, 1, 12),
+  parameter bit [31:0] Round   = fx_pkg::FxHalfEven,
   // Derived, do not override.
-  localparam int unsigned XfW    = fx_pkg::fx_width(XfFmt),
-  localparam int unsigned SpecW  = fx_pkg::fx_width(SpecFmt)
+  localparam bit [31:0] XfW    = fx_pkg::fx_width(XfFmt),
+  localparam bit [31:0] SpecW  = fx_pkg::fx_width(SpecFmt)
 ) (
   input  logic             clk_i,
   input  logic [      K:0] en_i,
@@ -40,10 +40,10 @@ module lyon_shape #(
   output logic [SpecW-1:0] spec_o
 );
 
-  localparam int unsigned OneFmt        = fx_pkg::fx_fmt(1'b0, 1, 0);
-  localparam int unsigned OneMinusXfFmt = fx_pkg::fx_sub_fmt(OneFmt, XfFmt);
-  localparam int unsigned SqW           = fx_pkg::fx_width(SqFmt);
-  localparam int unsigned SqSqFmt       = fx_pkg::fx_mul_fmt(SqFmt, SqFmt);
+  localparam bit [31:0] OneFmt        = fx_pkg::fx_fmt(1'b0, 1, 0);
+  localparam bit [31:0] OneMinusXfFmt = fx_pkg::fx_sub_fmt(OneFmt, XfFmt);
+  localparam bit [31:0] SqW           = fx_pkg::fx_width(SqFmt);
+  localparam bit [31:0] SqSqFmt       = fx_pkg::fx_mul_fmt(SqFmt, SqFmt);
 
   // sq_q[j*SqW +: SqW] is stage sq_j's value; zero_q[j] its flag.
   logic [(K+1)*SqW-1:0] sq_d, sq_q;

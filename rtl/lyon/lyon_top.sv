@@ -50,37 +50,37 @@
 // (valid held until taken, data stable while stalled) is the skid buffer's and the pipe_ctrl's,
 // checked by tests/stream_rtl_test.cpp and by the co-simulation harness.
 module lyon_top #(
-  parameter int unsigned Arrangement = 7,
-  parameter int unsigned Halfway     = 0,
-  parameter int unsigned Norm        = 2,
-  parameter int unsigned HNorm       = 0,
-  parameter int unsigned K           = 2,
-  parameter int unsigned Round       = fx_pkg::FxHalfEven,
-  parameter int unsigned VecFmt      = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned AFmt        = fx_pkg::fx_fmt(1'b0, 1, 10),
-  parameter int unsigned ShinFmt     = fx_pkg::fx_fmt(1'b0, 13, 0),
-  parameter int unsigned NpFmt       = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned ZFmt        = fx_pkg::fx_fmt(1'b0, 1, 12),
-  parameter int unsigned YFmt        = fx_pkg::fx_fmt(1'b1, 0, 12),
-  parameter int unsigned GFmt        = fx_pkg::fx_fmt(1'b0, 1, 12),
-  parameter int unsigned NFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned HFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned DotFmt      = fx_pkg::fx_fmt(1'b1, 1, 12),
-  parameter int unsigned RFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned DFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned DdFmt       = fx_pkg::fx_fmt(1'b0, 3, 19),
-  parameter int unsigned DabsFmt     = fx_pkg::fx_fmt(1'b0, 1, 10),
-  parameter int unsigned WFmt        = fx_pkg::fx_fmt(1'b0, 0, 9),
-  parameter int unsigned XfFmt       = fx_pkg::fx_fmt(1'b0, 0, 16),
-  parameter int unsigned SqFmt       = fx_pkg::fx_fmt(1'b0, 1, 16),
-  parameter int unsigned SpecFmt     = fx_pkg::fx_fmt(1'b0, 1, 12),
-  parameter int unsigned DiffFmt     = fx_pkg::fx_fmt(1'b0, 1, 12),
+  parameter bit [31:0] Arrangement = 7,
+  parameter bit [31:0] Halfway     = 0,
+  parameter bit [31:0] Norm        = 2,
+  parameter bit [31:0] HNorm       = 0,
+  parameter bit [31:0] K           = 2,
+  parameter bit [31:0] Round       = fx_pkg::FxHalfEven,
+  parameter bit [31:0] VecFmt      = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] AFmt        = fx_pkg::fx_fmt(1'b0, 1, 10),
+  parameter bit [31:0] ShinFmt     = fx_pkg::fx_fmt(1'b0, 13, 0),
+  parameter bit [31:0] NpFmt       = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] ZFmt        = fx_pkg::fx_fmt(1'b0, 1, 12),
+  parameter bit [31:0] YFmt        = fx_pkg::fx_fmt(1'b1, 0, 12),
+  parameter bit [31:0] GFmt        = fx_pkg::fx_fmt(1'b0, 1, 12),
+  parameter bit [31:0] NFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] HFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] DotFmt      = fx_pkg::fx_fmt(1'b1, 1, 12),
+  parameter bit [31:0] RFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] DFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] DdFmt       = fx_pkg::fx_fmt(1'b0, 3, 19),
+  parameter bit [31:0] DabsFmt     = fx_pkg::fx_fmt(1'b0, 1, 10),
+  parameter bit [31:0] WFmt        = fx_pkg::fx_fmt(1'b0, 0, 9),
+  parameter bit [31:0] XfFmt       = fx_pkg::fx_fmt(1'b0, 0, 16),
+  parameter bit [31:0] SqFmt       = fx_pkg::fx_fmt(1'b0, 1, 16),
+  parameter bit [31:0] SpecFmt     = fx_pkg::fx_fmt(1'b0, 1, 12),
+  parameter bit [31:0] DiffFmt     = fx_pkg::fx_fmt(1'b0, 1, 12),
   // Derived, do not override.
-  localparam int unsigned VecW       = fx_pkg::fx_width(VecFmt),
-  localparam int unsigned AW         = fx_pkg::fx_width(AFmt),
-  localparam int unsigned ShinW      = fx_pkg::fx_width(ShinFmt),
-  localparam int unsigned SpecW      = fx_pkg::fx_width(SpecFmt),
-  localparam int unsigned DiffW      = fx_pkg::fx_width(DiffFmt)
+  localparam bit [31:0] VecW       = fx_pkg::fx_width(VecFmt),
+  localparam bit [31:0] AW         = fx_pkg::fx_width(AFmt),
+  localparam bit [31:0] ShinW      = fx_pkg::fx_width(ShinFmt),
+  localparam bit [31:0] SpecW      = fx_pkg::fx_width(SpecFmt),
+  localparam bit [31:0] DiffW      = fx_pkg::fx_width(DiffFmt)
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -98,14 +98,14 @@ module lyon_top #(
   output logic [ DiffW-1:0] out_diff_o
 );
 
-  localparam int unsigned Depth = 12 + K;
-  localparam int unsigned NpW   = fx_pkg::fx_width(NpFmt);
-  localparam int unsigned NW    = fx_pkg::fx_width(NFmt);
-  localparam int unsigned HW    = fx_pkg::fx_width(HFmt);
-  localparam int unsigned DotW  = fx_pkg::fx_width(DotFmt);
-  localparam int unsigned RW    = fx_pkg::fx_width(RFmt);
-  localparam int unsigned DW    = fx_pkg::fx_width(DFmt);
-  localparam int unsigned XfW   = fx_pkg::fx_width(XfFmt);
+  localparam bit [31:0] Depth = 12 + K;
+  localparam bit [31:0] NpW   = fx_pkg::fx_width(NpFmt);
+  localparam bit [31:0] NW    = fx_pkg::fx_width(NFmt);
+  localparam bit [31:0] HW    = fx_pkg::fx_width(HFmt);
+  localparam bit [31:0] DotW  = fx_pkg::fx_width(DotFmt);
+  localparam bit [31:0] RW    = fx_pkg::fx_width(RFmt);
+  localparam bit [31:0] DW    = fx_pkg::fx_width(DFmt);
+  localparam bit [31:0] XfW   = fx_pkg::fx_width(XfFmt);
 
   // ---- Control: stage i loads its registers on en[i] ----
   logic [Depth-1:0] en;
@@ -218,10 +218,10 @@ module lyon_top #(
   end
 
   if (Halfway == 0) begin : g_reflect
-    localparam int unsigned DotNFmt   = fx_pkg::fx_mul_fmt(DotFmt, NFmt);
-    localparam int unsigned TwiceFmt  = fx_pkg::fx_scale_fmt(DotNFmt, 1);
-    localparam int unsigned RExactFmt = fx_pkg::fx_sub_fmt(TwiceFmt, VecFmt);
-    localparam int unsigned DExactFmt = fx_pkg::fx_sub_fmt(RFmt, VecFmt);
+    localparam bit [31:0] DotNFmt   = fx_pkg::fx_mul_fmt(DotFmt, NFmt);
+    localparam bit [31:0] TwiceFmt  = fx_pkg::fx_scale_fmt(DotNFmt, 1);
+    localparam bit [31:0] RExactFmt = fx_pkg::fx_sub_fmt(TwiceFmt, VecFmt);
+    localparam bit [31:0] DExactFmt = fx_pkg::fx_sub_fmt(RFmt, VecFmt);
     logic [3*VecW-1:0] v_q5;
     assign v_q5 = vl_q5[0+:3*VecW];
     // Stage 6: dot = rq(N·V, dot).
@@ -247,10 +247,10 @@ module lyon_top #(
           u_d (.in_i(d_exact), .out_o(d_d[c*DW+:DW]));
     end
   end else begin : g_halfway
-    localparam int unsigned LPlusVFmt = fx_pkg::fx_add_fmt(VecFmt, VecFmt);
-    localparam int unsigned HExactFmt = fx_pkg::fx_scale_fmt(LPlusVFmt, -1);
-    localparam int unsigned ProjFmt   = fx_pkg::fx_mul_fmt(DotFmt, NFmt);
-    localparam int unsigned DExactFmt = fx_pkg::fx_sub_fmt(HFmt, RFmt);
+    localparam bit [31:0] LPlusVFmt = fx_pkg::fx_add_fmt(VecFmt, VecFmt);
+    localparam bit [31:0] HExactFmt = fx_pkg::fx_scale_fmt(LPlusVFmt, -1);
+    localparam bit [31:0] ProjFmt   = fx_pkg::fx_mul_fmt(DotFmt, NFmt);
+    localparam bit [31:0] DExactFmt = fx_pkg::fx_sub_fmt(HFmt, RFmt);
     logic [3*HW-1:0]   h_d, h_q, hn_q5, hn_q6, hn_q7;
     logic [3*VecW-1:0] v_q1, l_q1;
     assign {l_q1, v_q1} = vl_q1;
@@ -368,11 +368,13 @@ module lyon_top #(
   );
 
   // Assertions: elaboration-time parameter checks.
+`ifndef __ICARUS__  // Icarus 11 has no elaboration-time $error
   if (Arrangement != 7 && Arrangement != 8) begin : g_bad_arrangement
     $error("lyon_top: Arrangement must be 7 or 8");
   end
   if (K > 3) begin : g_bad_k
     $error("lyon_top: K must be 0..3");
   end
+`endif
 
 endmodule

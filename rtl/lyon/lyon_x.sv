@@ -38,20 +38,20 @@
 //
 // Assertions: none (Arrangement and K are checked by lyon_top).
 module lyon_x #(
-  parameter int unsigned Arrangement = 7,
-  parameter int unsigned Halfway     = 0,
-  parameter int unsigned K           = 2,
-  parameter int unsigned DFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
-  parameter int unsigned ShinFmt     = fx_pkg::fx_fmt(1'b0, 13, 0),
-  parameter int unsigned DdFmt       = fx_pkg::fx_fmt(1'b0, 3, 19),
-  parameter int unsigned DabsFmt     = fx_pkg::fx_fmt(1'b0, 1, 10),
-  parameter int unsigned WFmt        = fx_pkg::fx_fmt(1'b0, 0, 9),
-  parameter int unsigned XfFmt       = fx_pkg::fx_fmt(1'b0, 0, 16),
-  parameter int unsigned Round       = fx_pkg::FxHalfEven,
+  parameter bit [31:0] Arrangement = 7,
+  parameter bit [31:0] Halfway     = 0,
+  parameter bit [31:0] K           = 2,
+  parameter bit [31:0] DFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
+  parameter bit [31:0] ShinFmt     = fx_pkg::fx_fmt(1'b0, 13, 0),
+  parameter bit [31:0] DdFmt       = fx_pkg::fx_fmt(1'b0, 3, 19),
+  parameter bit [31:0] DabsFmt     = fx_pkg::fx_fmt(1'b0, 1, 10),
+  parameter bit [31:0] WFmt        = fx_pkg::fx_fmt(1'b0, 0, 9),
+  parameter bit [31:0] XfFmt       = fx_pkg::fx_fmt(1'b0, 0, 16),
+  parameter bit [31:0] Round       = fx_pkg::FxHalfEven,
   // Derived, do not override.
-  localparam int unsigned DW         = fx_pkg::fx_width(DFmt),
-  localparam int unsigned ShinW      = fx_pkg::fx_width(ShinFmt),
-  localparam int unsigned XfW        = fx_pkg::fx_width(XfFmt)
+  localparam bit [31:0] DW         = fx_pkg::fx_width(DFmt),
+  localparam bit [31:0] ShinW      = fx_pkg::fx_width(ShinFmt),
+  localparam bit [31:0] XfW        = fx_pkg::fx_width(XfFmt)
 ) (
   input  logic             clk_i,
   input  logic [      1:0] en_i,
@@ -75,13 +75,13 @@ module lyon_x #(
   if (Arrangement == 7) begin : g_fig7
     localparam int          KSigned  = K;
     localparam int          XkShift  = -(KSigned + 1);
-    localparam int unsigned DdW      = fx_pkg::fx_width(DdFmt);
+    localparam bit [31:0] DdW      = fx_pkg::fx_width(DdFmt);
     // Exact intermediates.
-    localparam int unsigned X2Fmt    = fx_pkg::fx_mul_fmt(ShinFmt, DdFmt);
-    localparam int unsigned X2hFmt   = fx_pkg::fx_scale_fmt(X2Fmt, Halfway != 0 ? 2 : 0);
-    localparam int unsigned XkFmt    = fx_pkg::fx_scale_fmt(X2hFmt, XkShift);
-    localparam int unsigned XkW      = fx_pkg::fx_width(XkFmt);
-    localparam int unsigned XkFrac   = fx_pkg::fx_frac(XkFmt);
+    localparam bit [31:0] X2Fmt    = fx_pkg::fx_mul_fmt(ShinFmt, DdFmt);
+    localparam bit [31:0] X2hFmt   = fx_pkg::fx_scale_fmt(X2Fmt, Halfway != 0 ? 2 : 0);
+    localparam bit [31:0] XkFmt    = fx_pkg::fx_scale_fmt(X2hFmt, XkShift);
+    localparam bit [31:0] XkW      = fx_pkg::fx_width(XkFmt);
+    localparam bit [31:0] XkFrac   = fx_pkg::fx_frac(XkFmt);
 
     // Stage 9: dd = rq(D·D, dd).
     logic [DdW-1:0]   dd_d, dd_q;
@@ -109,26 +109,26 @@ module lyon_x #(
     end
     fx_rq #(.InFmt(XkFmt), .OutFmt(XfFmt), .Round(Round)) u_xf (.in_i(xk), .out_o(xf_d));
   end else begin : g_fig8
-    localparam int unsigned S         = (K + 2) / 2;  // ceil((K+1)/2)
-    localparam int unsigned E         = 2 * S - (K + 1);
+    localparam bit [31:0] S         = (K + 2) / 2;  // ceil((K+1)/2)
+    localparam bit [31:0] E         = 2 * S - (K + 1);
     localparam int          SSigned   = S;
     localparam int          ESigned   = E;
     localparam int          UShift    = (Halfway != 0 ? 1 : 0) - SSigned;
-    localparam int unsigned DabsW     = fx_pkg::fx_width(DabsFmt);
-    localparam int unsigned WW        = fx_pkg::fx_width(WFmt);
+    localparam bit [31:0] DabsW     = fx_pkg::fx_width(DabsFmt);
+    localparam bit [31:0] WW        = fx_pkg::fx_width(WFmt);
     // Exact intermediates.
-    localparam int unsigned AbsDFmt   = fx_pkg::fx_abs_fmt(DFmt);
-    localparam int unsigned MdFmt     = fx_pkg::fx_mul_fmt(ShinFmt, DabsFmt);
-    localparam int unsigned UFmt      = fx_pkg::fx_scale_fmt(MdFmt, UShift);
-    localparam int unsigned UW        = fx_pkg::fx_width(UFmt);
-    localparam int unsigned UFrac     = fx_pkg::fx_frac(UFmt);
-    localparam int unsigned WSqFmt    = fx_pkg::fx_mul_fmt(WFmt, WFmt);
-    localparam int unsigned WSqW      = fx_pkg::fx_width(WSqFmt);
-    localparam int unsigned Sum2Fmt   = fx_pkg::fx_add_fmt(WSqFmt, WSqFmt);
-    localparam int unsigned Sum3Fmt   = fx_pkg::fx_add_fmt(Sum2Fmt, WSqFmt);
-    localparam int unsigned XkFmt     = fx_pkg::fx_scale_fmt(Sum3Fmt, ESigned);
-    localparam int unsigned XkW       = fx_pkg::fx_width(XkFmt);
-    localparam int unsigned XkFrac    = fx_pkg::fx_frac(XkFmt);
+    localparam bit [31:0] AbsDFmt   = fx_pkg::fx_abs_fmt(DFmt);
+    localparam bit [31:0] MdFmt     = fx_pkg::fx_mul_fmt(ShinFmt, DabsFmt);
+    localparam bit [31:0] UFmt      = fx_pkg::fx_scale_fmt(MdFmt, UShift);
+    localparam bit [31:0] UW        = fx_pkg::fx_width(UFmt);
+    localparam bit [31:0] UFrac     = fx_pkg::fx_frac(UFmt);
+    localparam bit [31:0] WSqFmt    = fx_pkg::fx_mul_fmt(WFmt, WFmt);
+    localparam bit [31:0] WSqW      = fx_pkg::fx_width(WSqFmt);
+    localparam bit [31:0] Sum2Fmt   = fx_pkg::fx_add_fmt(WSqFmt, WSqFmt);
+    localparam bit [31:0] Sum3Fmt   = fx_pkg::fx_add_fmt(Sum2Fmt, WSqFmt);
+    localparam bit [31:0] XkFmt     = fx_pkg::fx_scale_fmt(Sum3Fmt, ESigned);
+    localparam bit [31:0] XkW       = fx_pkg::fx_width(XkFmt);
+    localparam bit [31:0] XkFrac    = fx_pkg::fx_frac(XkFmt);
 
     // Stage 9: dabs_c = rq(|D_c|, dabs); u_c = m·dabs_c·2^-s (·2 halfway), exact;
     // big = any u_c >= 1; w_c = rq(u_c, w).

@@ -29,13 +29,13 @@
 //
 // Assertions: none (the caller sequences load, row start, pixel and row steps).
 module quad_channel #(
-  parameter int unsigned AccFmt   = fx_pkg::fx_fmt(1'b1, 2, 32),
-  parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b0, 0, 8),
-  parameter int unsigned OutRound = fx_pkg::FxHalfEven,
-  parameter int unsigned I0Bits   = 11,
+  parameter bit [31:0] AccFmt   = fx_pkg::fx_fmt(1'b1, 2, 32),
+  parameter bit [31:0] OutFmt   = fx_pkg::fx_fmt(1'b0, 0, 8),
+  parameter bit [31:0] OutRound = fx_pkg::FxHalfEven,
+  parameter bit [31:0] I0Bits   = 11,
   // Derived, do not override.
-  localparam int unsigned AccW    = fx_pkg::fx_width(AccFmt),
-  localparam int unsigned OutW    = fx_pkg::fx_width(OutFmt)
+  localparam bit [31:0] AccW    = fx_pkg::fx_width(AccFmt),
+  localparam bit [31:0] OutW    = fx_pkg::fx_width(OutFmt)
 ) (
   input  logic              clk_i,
   input  logic              load_i,

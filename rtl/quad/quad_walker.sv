@@ -33,18 +33,18 @@
 // Assertions: the handshakes are the skid buffers' (tests/stream_rtl_test.cpp); the co-simulation
 // harness checks that a stalled output stays valid and unchanged.
 module quad_walker #(
-  parameter int unsigned AccFmt   = fx_pkg::fx_fmt(1'b1, 2, 32),
-  parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b0, 0, 8),
-  parameter int unsigned OutRound = fx_pkg::FxHalfEven,
-  parameter int unsigned SubBits  = 4,
+  parameter bit [31:0] AccFmt   = fx_pkg::fx_fmt(1'b1, 2, 32),
+  parameter bit [31:0] OutFmt   = fx_pkg::fx_fmt(1'b0, 0, 8),
+  parameter bit [31:0] OutRound = fx_pkg::FxHalfEven,
+  parameter bit [31:0] SubBits  = 4,
   // Derived, do not override.
-  localparam int unsigned AccW    = fx_pkg::fx_width(AccFmt),
-  localparam int unsigned OutW    = fx_pkg::fx_width(OutFmt),
-  localparam int unsigned CoordW  = 11,                 // screens up to 2048 x 2048
-  localparam int unsigned QW      = 26 + 2 * SubBits,   // DDA quotient (signed)
-  localparam int unsigned RW      = 12 + 2 * SubBits,   // DDA remainder and divisor
-  localparam int unsigned EdgeW   = 2 + 2 * QW + 3 * RW,
-  localparam int unsigned ChanW   = 6 * AccW
+  localparam bit [31:0] AccW    = fx_pkg::fx_width(AccFmt),
+  localparam bit [31:0] OutW    = fx_pkg::fx_width(OutFmt),
+  localparam bit [31:0] CoordW  = 11,                 // screens up to 2048 x 2048
+  localparam bit [31:0] QW      = 26 + 2 * SubBits,   // DDA quotient (signed)
+  localparam bit [31:0] RW      = 12 + 2 * SubBits,   // DDA remainder and divisor
+  localparam bit [31:0] EdgeW   = 2 + 2 * QW + 3 * RW,
+  localparam bit [31:0] ChanW   = 6 * AccW
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -64,7 +64,7 @@ module quad_walker #(
   output logic [  3*OutW-1:0] out_rgb_o
 );
 
-  localparam int unsigned ProgW = 4 * CoordW + 3 * EdgeW + 3 * ChanW;
+  localparam bit [31:0] ProgW = 4 * CoordW + 3 * EdgeW + 3 * ChanW;
   localparam logic [1:0] KindLower = 2'd1;
   localparam logic [1:0] KindUpper = 2'd2;
 
@@ -141,7 +141,9 @@ module quad_walker #(
   assign row_empty = lower > upper;
 
   // ---- Control ----
-  assign fire      = state_q == Pixels && out_ready;
+  logic emitting;  // in Pixels: offering a pixel (a named signal: Icarus 11 mistypes the enum otherwise)
+  assign emitting  = state_q == Pixels;
+  assign fire      = emitting && out_ready;
   assign row_start = state_q == Row && !row_empty;
   assign row_done  = (state_q == Row && row_empty) || (fire && x_q == xr_q);
   assign tri_done  = row_done && y_q == y1_q;
@@ -224,7 +226,7 @@ module quad_walker #(
   stream_skid #(.Width(2 * CoordW + 3 * OutW)) u_out (
     .clk_i,
     .rst_ni,
-    .in_valid_i (state_q == Pixels),
+    .in_valid_i (emitting),
     .in_ready_o (out_ready),
     .in_data_i  ({rgb, y_q, x_q}),
     .out_valid_o,

@@ -6,8 +6,8 @@
 // Ports: the stream_skid port set (clk_i, rst_ni, in_valid_i, in_ready_o, in_data_i,
 //        out_valid_o, out_ready_i, out_data_o).
 module pipe_ctrl_tb #(
-  parameter int unsigned Depth = 4,
-  parameter int unsigned Width = 16
+  parameter bit [31:0] Depth = 4,
+  parameter bit [31:0] Width = 16
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,

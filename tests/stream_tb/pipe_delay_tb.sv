@@ -5,8 +5,8 @@
 // Parameters: Depth - stages of both; Width - data bits.
 // Ports: the stream_skid port set.
 module pipe_delay_tb #(
-  parameter int unsigned Depth = 3,
-  parameter int unsigned Width = 16
+  parameter bit [31:0] Depth = 3,
+  parameter bit [31:0] Width = 16
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,
