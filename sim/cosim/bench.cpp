@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 
+#include "base/error.h"
 #include "sim/cosim/harness.h"
 
 namespace phongsim {
@@ -13,11 +15,32 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+BenchRate rate(std::uint64_t vectors, std::uint64_t outputs, double seconds) {
+  return {static_cast<double>(vectors) / seconds, static_cast<double>(outputs) / seconds, 0};
+}
+
+// The vectors a chunk at a time (outputs of a chunk discarded before the next: a quad bench
+// would otherwise hold gigabytes of pixels).
+constexpr std::size_t kChunk = 1024;
+
+template <class Eval>
+std::uint64_t run_chunks(std::span<const std::int64_t> inputs, std::size_t n_in, Eval&& eval,
+                         std::vector<std::int64_t>& out) {
+  std::uint64_t outputs = 0;
+  for (std::size_t at = 0; at < inputs.size(); at += kChunk * n_in) {
+    out.clear();
+    outputs += eval(inputs.subspan(at, std::min(kChunk * n_in, inputs.size() - at)), out);
+  }
+  return outputs;
+}
+
 }  // namespace
 
-BenchReport bench(const CosimSubject& subject, std::uint64_t vectors) {
+BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const NativeKernel& native,
+                  unsigned jobs) {
   BenchReport r;
   r.vectors = vectors;
+  r.jobs = jobs;
   PipelineModel& model = subject.model;
   const Stimulus& stimulus = subject.stimulus;
   const std::size_t n_in = model.inputs().size();
@@ -25,22 +48,39 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors) {
   for (std::uint64_t i = 0; i < vectors; ++i) {
     stimulus.vector(1, stimulus.directed_count() + i, std::span(inputs).subspan(i * n_in, n_in));
   }
+  std::vector<std::int64_t> out;
+  out.reserve(1 << 20);
 
-  const auto rate = [](double vectors_done, double outputs_done, double seconds) {
-    return BenchRate{vectors_done / seconds, outputs_done / seconds};
-  };
+  if (native) {  // bit-identical to the model on these vectors, chunk by chunk (not timed)
+    std::vector<std::int64_t> want;
+    model.reset();
+    for (std::size_t at = 0; at < inputs.size(); at += kChunk * n_in) {
+      const auto chunk = std::span(inputs).subspan(at, std::min(kChunk * n_in, inputs.size() - at));
+      want.clear();
+      out.clear();
+      (void)model.eval_batch(chunk, want);
+      (void)native(chunk, out);
+      if (out != want) {
+        throw Error(fmt::format(
+            "bench: the native kernel differs from the model on vectors {}..{} (seed 1)",
+            stimulus.directed_count() + at / n_in,
+            stimulus.directed_count() + (at + chunk.size()) / n_in - 1));
+      }
+    }
+    r.native_note =
+        fmt::format("native kernel bit-identical to the model on all {} vectors", vectors);
+  }
   {
-    std::vector<std::int64_t> out;
-    out.reserve(1 << 16);
-    std::uint64_t outputs = 0;
     model.reset();
     const auto start = std::chrono::steady_clock::now();
-    for (std::uint64_t i = 0; i < vectors; ++i) {
-      out.clear();
-      outputs += model.eval(std::span(inputs).subspan(i * n_in, n_in), out);
-    }
-    r.model =
-        rate(static_cast<double>(vectors), static_cast<double>(outputs), seconds_since(start));
+    const std::uint64_t outputs = run_chunks(
+        inputs, n_in, [&](auto in, auto& o) { return model.eval_batch(in, o); }, out);
+    r.model = rate(vectors, outputs, seconds_since(start));
+  }
+  if (native) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::uint64_t outputs = run_chunks(inputs, n_in, native, out);
+    r.native = rate(vectors, outputs, seconds_since(start));
   }
   {
     DutPtr dut = subject.make_dut();
@@ -48,34 +88,58 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors) {
     const HarnessResult h = stream_vectors(*dut, n_in, model.outputs().size(), inputs,
                                            [](std::span<const std::int64_t>) {});
     const double s = seconds_since(start);
-    r.rtl = rate(static_cast<double>(h.inputs), static_cast<double>(h.outputs), s);
-    r.rtl_cycles_per_s = static_cast<double>(h.cycles) / s;
+    r.rtl = rate(h.inputs, h.outputs, s);
+    r.rtl.cycles_per_s = static_cast<double>(h.cycles) / s;
   }
   {
+    DutPtr dut = subject.make_dut();
+    dut->bare_load(inputs, n_in);
+    const auto start = std::chrono::steady_clock::now();
+    const BareStats b = dut->bare_run();
+    const double s = seconds_since(start);
+    r.bare_rtl = rate(b.inputs, b.outputs, s);
+    r.bare_rtl.cycles_per_s = static_cast<double>(b.cycles) / s;
+  }
+  for (const unsigned j : {1U, jobs}) {
+    if (j == 1 && r.cosim.outputs_per_s > 0) continue;
     CosimOptions o;
     o.directed = false;
     o.random_vectors = vectors;
     o.measure_vectors = 0;
+    o.jobs = j;
     const auto start = std::chrono::steady_clock::now();
     const CosimReport c = cosim(subject, o);
-    r.cosim =
-        rate(static_cast<double>(c.vectors), static_cast<double>(c.outputs), seconds_since(start));
+    (j == 1 ? r.cosim : r.cosim_jobs) = rate(c.vectors, c.outputs, seconds_since(start));
   }
   return r;
 }
 
 std::string BenchReport::table() const {
-  return fmt::format(
-      "  {:<16} {:>12} {:>12}\n"
-      "  model            {:>12.0f} {:>12.0f}\n"
-      "  Verilated RTL    {:>12.0f} {:>12.0f}   ({:.0f} cycles/s)\n"
-      "  co-simulation    {:>12.0f} {:>12.0f}\n"
-      "  model / RTL      {:>25.2f}x\n"
-      "  co-sim / RTL     {:>25.2f}x\n",
-      "per second", "vectors", "outputs", model.vectors_per_s, model.outputs_per_s,
-      rtl.vectors_per_s, rtl.outputs_per_s, rtl_cycles_per_s, cosim.vectors_per_s,
-      cosim.outputs_per_s, model.outputs_per_s / rtl.outputs_per_s,
-      cosim.outputs_per_s / rtl.outputs_per_s);
+  const auto row = [](std::string_view what, const BenchRate& b, std::string_view extra = "") {
+    return fmt::format("  {:<22} {:>12.0f} {:>12.0f}{}\n", what, b.vectors_per_s, b.outputs_per_s,
+                       extra);
+  };
+  std::string s = fmt::format("  {:<22} {:>12} {:>12}\n", "per second", "vectors", "outputs");
+  s += row("model", model);
+  if (native) s += row("native kernel", *native);
+  s += row("Verilated RTL", rtl, fmt::format("   ({:.0f} cycles/s)", rtl.cycles_per_s));
+  s += row("bare Verilator loop", bare_rtl,
+           fmt::format("   ({:.0f} cycles/s)", bare_rtl.cycles_per_s));
+  s += row("co-simulation", cosim);
+  if (jobs > 1) s += row(fmt::format("co-simulation, {} jobs", jobs), cosim_jobs);
+  const auto ratio = [](std::string_view what, double x) {
+    return fmt::format("  {:<22} {:>25.2f}x\n", what, x);
+  };
+  if (native) s += ratio("model / native", model.outputs_per_s / native->outputs_per_s);
+  s += ratio("model / RTL", model.outputs_per_s / rtl.outputs_per_s);
+  s += ratio("RTL / bare loop", rtl.cycles_per_s / bare_rtl.cycles_per_s);
+  s += ratio("co-sim / RTL", cosim.outputs_per_s / rtl.outputs_per_s);
+  if (jobs > 1) {
+    s +=
+        ratio(fmt::format("{} jobs / 1 job", jobs), cosim_jobs.outputs_per_s / cosim.outputs_per_s);
+  }
+  if (!native_note.empty()) s += "  " + native_note + "\n";
+  return s;
 }
 
 }  // namespace phongsim
