@@ -13,7 +13,7 @@ void add_list(CLI::App& app, Action& action) {
         fmt::print("{:<8} {}\n", p.name, p.summary);
         for (const auto& f : pipeline_configs(p)) {
           const Config cfg = Config::load(f);
-          fmt::print("  {:<40} {}\n", std::filesystem::relative(f, data_root()).string(),
+          fmt::print("  {:<40} {}\n", f.lexically_relative(data_root()).string(),
                      cfg.description());
         }
       }

@@ -403,8 +403,10 @@ double area_of(const SweepSpec& spec, const PointResult& r) {
 
 }  // namespace
 
+std::string point_result_json(const PointResult& r) { return to_json(r).dump(2) + "\n"; }
+
 void write_point_result(const PointResult& r, const fs::path& path) {
-  write_text(path, to_json(r).dump(2) + "\n");
+  write_text(path, point_result_json(r));
 }
 
 std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const fs::path& out) {

@@ -85,6 +85,7 @@ struct PointResult {
 std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const std::filesystem::path& out);
 
 // Result JSON of one point (written by `phongsim sweep point`, read by merge).
+[[nodiscard]] std::string point_result_json(const PointResult& r);
 void write_point_result(const PointResult& r, const std::filesystem::path& path);
 
 // Collects <out>/results/*.json into <out>/sweep.csv and <out>/summary.md (the Pareto front

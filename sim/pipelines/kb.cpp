@@ -14,6 +14,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <numeric>
 
 #include "base/error.h"
 #include "model/kb.h"
@@ -194,7 +195,11 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
 
 std::vector<KbFitRow> kb_fit_table() {
   std::vector<KbFitRow> rows;
-  for (int n = 1; n <= 125; ++n) {
+  // The paper's range 1..125, then the renderer's halfway exponents 4n for shininess 32..1024.
+  std::vector<int> ns(125);
+  std::iota(ns.begin(), ns.end(), 1);
+  ns.insert(ns.end(), {128, 256, 512, 1024, 4096});
+  for (const int n : ns) {
     KbFitRow r;
     r.n = n;
     r.closed = kb::closed_form(n);
@@ -324,6 +329,22 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
   return (out.size() - before) / 2;
 }
 
+// A word's stages: the accumulator f of every pixel it emits (before clamping and rounding),
+// then that pixel's output value.
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  auto& m = dynamic_cast<KbModel&>(model);
+  std::vector<std::int64_t> acc, out;
+  m.trace_accumulator(&acc);
+  (void)m.eval(in, out);
+  m.trace_accumulator(nullptr);
+  std::vector<StageValue> s;
+  for (std::size_t i = 0; i < acc.size(); ++i) {
+    s.push_back({fmt::format("pixel{}.f", i), fx::Fixed{acc[i], m.formats().acc}});
+    s.push_back({fmt::format("pixel{}.value", i), fx::Fixed{out[2 * i], m.formats().out}});
+  }
+  return s;
+}
+
 // Random spans of the configuration's setup through the model, against the exact span.
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const KbFormats f = KbFormats::from_config(cfg);
@@ -360,12 +381,13 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
 
 void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed, std::FILE* out) {
   fmt::print(out,
-             "Three-piece quadratic against cos^n theta over [0, pi] (kb::max_error, rms_error)\n");
-  fmt::print(out, "  {:>3}  {:>8} {:>8} {:>9} {:>9}   {:>8} {:>8} {:>9} {:>9}\n", "n", "a closed",
+             "Three-piece quadratic against cos^n theta (0 beyond pi/2): max and rms over theta in "
+             "[0, pi] (kb::max_error, rms_error)\n");
+  fmt::print(out, "  {:>4}  {:>8} {:>8} {:>9} {:>9}   {:>8} {:>8} {:>9} {:>9}\n", "n", "a closed",
              "b closed", "max", "rms", "a lsq", "b lsq", "max", "rms");
   for (const KbFitRow& r : kb_fit_table()) {
     fmt::print(out,
-               "  {:>3}  {:>8.5f} {:>8.5f} {:>9.6f} {:>9.6f}   {:>8.5f} {:>8.5f} {:>9.6f} "
+               "  {:>4}  {:>8.5f} {:>8.5f} {:>9.6f} {:>9.6f}   {:>8.5f} {:>8.5f} {:>9.6f} "
                "{:>9.6f}\n",
                r.n, r.closed.a, r.closed.b, r.closed_max, r.closed_rms, r.lsq.a, r.lsq.b, r.lsq_max,
                r.lsq_rms);
@@ -427,6 +449,7 @@ const PipelineInfo& kb_pipeline() {
       .default_vectors = 100000,
       .latency = latency,
       .one_per_clock = true,
+      .stages = stages,
       .native = native,
       .float_error = float_error,
       .analyze = analyze,

@@ -45,7 +45,21 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
   return Stimulus(model, std::move(directed));
 }
 
-int latency(const Config&) { return 3; }  // diff, prod, out (docs/lirp.md)
+int latency(const Config&) { return 3; }  // delta, prod, out (docs/lirp.md)
+
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  const auto& m = dynamic_cast<const LirpModel&>(model);
+  std::vector<StageValue> s;
+  for (int c = 0; c < 3; ++c) {
+    const LirpStages st = m.component(in[c], in[3 + c], in[6]);
+    const std::string axis(1, "xyz"[c]);
+    s.push_back({"delta_" + axis, st.delta});
+    s.push_back({"prod_" + axis, st.prod});
+    s.push_back({"sum_" + axis, st.sum});
+    s.push_back({"p_" + axis, st.p});
+  }
+  return s;
+}
 
 // configs/lirp/default.toml by hand: p S1.10, a 1.10, out S1.10, half_even, saturate. delta S2.10,
 // prod = a·delta S3.20, sum = (p0 << 10) + prod S4.20, p = rq(sum) dropping 10 bits.
@@ -137,6 +151,7 @@ const PipelineInfo& lirp_pipeline() {
       .default_vectors = 1000000,
       .latency = latency,
       .one_per_clock = true,
+      .stages = stages,
       .native = native,
       .float_error = lirp_float_error,
       .analyze = analyze,

@@ -309,6 +309,49 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
   return n;
 }
 
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  const auto& m = dynamic_cast<const LyonModel&>(model);
+  const LyonFormats& f = m.formats();
+  const LyonStages st = m.stages({in[0], in[1], in[2]}, {in[3], in[4], in[5]}, in[6],
+                                 {in[7], in[8], in[9]}, {in[10], in[11], in[12]}, in[13]);
+  std::vector<StageValue> s;
+  const auto vec = [&](const std::string& name, const Vec3Fx& v) {
+    for (int c = 0; c < 3; ++c) s.push_back({name + "_" + "xyz"[c], v[c]});
+  };
+  const auto flag = [&](const std::string& name, bool b) {
+    s.push_back({name, fx::Fixed{b ? 1 : 0, fx::Format{false, 1, 0}}});
+  };
+  const auto norm = [&](const std::string& name, const LyonNormStages& n) {
+    s.push_back({name + ".z", n.z});
+    s.push_back({name + ".y", n.y});
+    s.push_back({name + ".g", n.g});
+    vec(name, n.out);
+  };
+  vec("np", st.np);
+  norm("n", st.n);
+  if (f.halfway) {
+    vec("h", st.h);
+    norm("hn", st.hn);
+  }
+  s.push_back({"dot", st.dot});
+  s.push_back({"diff", st.diff});
+  vec("r", st.r);
+  vec("d", st.d);
+  if (f.arrangement == 7) {
+    s.push_back({"dd", st.dd});
+  } else {
+    vec("abs_d", st.dabs);
+    vec("w", st.w);
+    flag("big", st.big);
+  }
+  s.push_back({"xk", st.xk});
+  flag("zero", st.zero);
+  s.push_back({"xf", st.xf});
+  for (int j = 0; j <= f.k; ++j) s.push_back({fmt::format("sq_{}", j), st.sq[j]});
+  s.push_back({"spec", st.spec});
+  return s;
+}
+
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const LyonModel model(LyonFormats::from_config(cfg));
   const LyonOutputError l = lyon_output_error(model, samples, seed, /*exact_inputs=*/true);
@@ -386,6 +429,7 @@ const PipelineInfo& lyon_pipeline() {
       .default_vectors = 1000000,
       .latency = latency,
       .one_per_clock = true,
+      .stages = stages,
       .native = native,
       .float_error = float_error,
       .analyze = analyze,

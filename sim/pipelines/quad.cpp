@@ -262,6 +262,22 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
   return pixels;
 }
 
+// A program's stages: every covered pixel's three channel accumulators (before clamping and
+// rounding), named by the pixel.
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  const auto& m = dynamic_cast<const QuadModel&>(model);
+  std::vector<std::int64_t> out, acc;
+  const std::size_t n = m.walk(QuadModel::program(in), out, &acc);
+  std::vector<StageValue> s;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int ch = 0; ch < 3; ++ch) {
+      s.push_back({fmt::format("pixel({},{}).{}_acc", out[5 * i], out[5 * i + 1], "rgb"[ch]),
+                   fx::Fixed{acc[3 * i + static_cast<std::size_t>(ch)], m.formats().acc}});
+    }
+  }
+  return s;
+}
+
 // Random triangles of the configuration's mode through the model, against direct evaluation.
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const QuadFormats f = QuadFormats::from_config(cfg);
@@ -355,6 +371,7 @@ const PipelineInfo& quad_pipeline() {
       .latency = latency,
       // One cycle per row on span set-up: below one pixel per clock by design (docs/quad.md).
       .one_per_clock = false,
+      .stages = stages,
       .native = native,
       .float_error = float_error,
       .analyze = analyze,

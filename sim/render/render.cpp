@@ -67,6 +67,9 @@ double row(lyon::Spec s, Vec3 n, Vec3 l, Vec3 v, double shin) {
   return lyon::specfuns(n, l, v, shin)[lyon::index(s)];
 }
 
+// Lyon's root-shininess unit (Fig. 8) takes m = round(√n) and so shades with m², not n.
+double root_shininess(double n) { return std::round(std::sqrt(n)); }
+
 const std::vector<Method>& methods() {
   using lyon::Spec;
   static const std::vector<Method> table{
@@ -98,14 +101,18 @@ const std::vector<Method>& methods() {
       {{"lyon-k3", "Lyon f_3 (unit: Fig. 7, g2)", "lyon/fig7_k3", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 3); }},
-      {{"lyon-fig8-k1", "Lyon f_1, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k1",
-        false},
+      {{"lyon-fig8-k1", "Lyon f_1, root shininess m = round(sqrt(n)) as the unit (Fig. 8)",
+        "lyon/fig8_k1", false},
        Kind::pixel,
-       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 1); }},
-      {{"lyon-fig8-k2", "Lyon f_2, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k2",
-        false},
+       [](Vec3 n, Vec3 l, Vec3 v, double s) {
+         return lyon::lyon_reflect(n, l, v, root_shininess(s) * root_shininess(s), 1);
+       }},
+      {{"lyon-fig8-k2", "Lyon f_2, root shininess m = round(sqrt(n)) as the unit (Fig. 8)",
+        "lyon/fig8_k2", false},
        Kind::pixel,
-       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
+       [](Vec3 n, Vec3 l, Vec3 v, double s) {
+         return lyon::lyon_reflect(n, l, v, root_shininess(s) * root_shininess(s), 2);
+       }},
       {{"blinn", "Blinn-Phong (H*.N)^(4n) (row 5)", "", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::blinn(n, l, v, s); }},
@@ -125,10 +132,13 @@ const std::vector<Method>& methods() {
       {{"halfway-g2-k2", "D = Hg2 - N, f_2 (row 10)", "", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::halfway_g2_k2, n, l, v, s); }},
-      {{"halfway-proj-k1-fig8", "D = H - (H.N)N, f_1, root shininess (unit: halfway_fig8)",
+      {{"halfway-proj-k1-fig8",
+        "D = H - (H.N)N, f_1, root shininess m = round(sqrt(n)) as the unit (halfway_fig8)",
         "lyon/halfway_fig8", false},
        Kind::pixel,
-       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 1, 0); }},
+       [](Vec3 n, Vec3 l, Vec3 v, double s) {
+         return lyon::lyon_halfway(n, l, v, root_shininess(s) * root_shininess(s), 1, 0);
+       }},
       {{"kb-exact",
         "Kuijk-Blake eq. 1: N, L, H rotated along each span, exact angles, quadratic cos^n", "",
         true},
@@ -286,7 +296,7 @@ Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
   for (const Fragment& fr : f.fragments) {
     const Vec3 v = f.lighting.v_at(fr.p);
     const double shin =
-        lf.arrangement == 8 ? std::round(std::sqrt(fr.shininess)) : std::round(fr.shininess);
+        lf.arrangement == 8 ? root_shininess(fr.shininess) : std::round(fr.shininess);
     for (const Light& l : f.lighting.lights) {
       const Vec3 ld = Lighting::l_at(l, fr.p);
       for (int rep = 0; rep < 2; ++rep) {
@@ -464,9 +474,8 @@ Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgr
 // term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's specfuns.m).
 
 kb::QuadParams kb_ab(double n) {
-  // Our least-squares table covers Kuijk-Blake's range n = 1..125; beyond, the closed forms.
-  const double r = std::max(1.0, std::round(n));
-  return r <= 125 ? kb_params(r, KbAbSource::least_squares) : kb::closed_form(r);
+  // The least-squares fit for every exponent (the closed forms degrade fast beyond 125).
+  return kb_params(std::max(1.0, std::round(n)), KbAbSource::least_squares);
 }
 
 // One light along one span: the light and halfway directions at the two ends.
@@ -837,6 +846,13 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
                                            texmap::filter_name(o.texture_filter));
       break;
     }
+  }
+  const auto is_kb = [](const Method* m) {
+    return m->kind == Kind::kb_exact || m->kind == Kind::kb_decompose ||
+           m->kind == Kind::kb_one_vector;
+  };
+  if (std::any_of(chosen.begin(), chosen.end(), is_kb)) {
+    result.settings += ", Kuijk-Blake (a, b): least-squares fit per exponent";
   }
   // Round by round every method once (the reference first), so that a drift of the machine's
   // speed during the run affects all methods alike; the medians are kept.
