@@ -20,16 +20,39 @@ BenchRate rate(std::uint64_t vectors, std::uint64_t outputs, double seconds) {
 }
 
 // The vectors a chunk at a time (outputs of a chunk discarded before the next: a quad bench
-// would otherwise hold gigabytes of pixels).
+// would otherwise hold gigabytes of pixels). Chunks of about kChunk vectors end where an
+// independent group of vectors begins (Stimulus::group_start: kb's span programs), because a
+// native kernel starts each call from the reset state.
 constexpr std::size_t kChunk = 1024;
 
+// The vector positions where chunks end (the last one `vectors`); bench vector i is stimulus
+// vector first + i.
+std::vector<std::size_t> chunk_ends(const Stimulus& stimulus, std::uint64_t first,
+                                    std::size_t vectors) {
+  std::vector<std::size_t> ends;
+  std::size_t at = 0;
+  while (at < vectors) {
+    std::size_t end = std::min(vectors, at + kChunk);
+    if (end < vectors) {
+      end = static_cast<std::size_t>(
+          std::min<std::uint64_t>(vectors, stimulus.group_start(first + end) - first));
+    }
+    ends.push_back(end);
+    at = end;
+  }
+  return ends;
+}
+
 template <class Eval>
-std::uint64_t run_chunks(std::span<const std::int64_t> inputs, std::size_t n_in, Eval&& eval,
+std::uint64_t run_chunks(std::span<const std::int64_t> inputs, std::size_t n_in,
+                         std::span<const std::size_t> ends, Eval&& eval,
                          std::vector<std::int64_t>& out) {
   std::uint64_t outputs = 0;
-  for (std::size_t at = 0; at < inputs.size(); at += kChunk * n_in) {
+  std::size_t at = 0;
+  for (const std::size_t end : ends) {
     out.clear();
-    outputs += eval(inputs.subspan(at, std::min(kChunk * n_in, inputs.size() - at)), out);
+    outputs += eval(inputs.subspan(at * n_in, (end - at) * n_in), out);
+    at = end;
   }
   return outputs;
 }
@@ -51,11 +74,14 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   std::vector<std::int64_t> out;
   out.reserve(1 << 20);
 
+  const std::vector<std::size_t> ends =
+      chunk_ends(stimulus, stimulus.directed_count(), static_cast<std::size_t>(vectors));
   if (native) {  // bit-identical to the model on these vectors, chunk by chunk (not timed)
     std::vector<std::int64_t> want;
     model.reset();
-    for (std::size_t at = 0; at < inputs.size(); at += kChunk * n_in) {
-      const auto chunk = std::span(inputs).subspan(at, std::min(kChunk * n_in, inputs.size() - at));
+    std::size_t at = 0;
+    for (const std::size_t end : ends) {
+      const auto chunk = std::span(inputs).subspan(at * n_in, (end - at) * n_in);
       want.clear();
       out.clear();
       (void)model.eval_batch(chunk, want);
@@ -63,9 +89,9 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
       if (out != want) {
         throw Error(fmt::format(
             "bench: the native kernel differs from the model on vectors {}..{} (seed 1)",
-            stimulus.directed_count() + at / n_in,
-            stimulus.directed_count() + (at + chunk.size()) / n_in - 1));
+            stimulus.directed_count() + at, stimulus.directed_count() + end - 1));
       }
+      at = end;
     }
     r.native_note =
         fmt::format("native kernel bit-identical to the model on all {} vectors", vectors);
@@ -74,12 +100,12 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
     model.reset();
     const auto start = std::chrono::steady_clock::now();
     const std::uint64_t outputs = run_chunks(
-        inputs, n_in, [&](auto in, auto& o) { return model.eval_batch(in, o); }, out);
+        inputs, n_in, ends, [&](auto in, auto& o) { return model.eval_batch(in, o); }, out);
     r.model = rate(vectors, outputs, seconds_since(start));
   }
   if (native) {
     const auto start = std::chrono::steady_clock::now();
-    const std::uint64_t outputs = run_chunks(inputs, n_in, native, out);
+    const std::uint64_t outputs = run_chunks(inputs, n_in, ends, native, out);
     r.native = rate(vectors, outputs, seconds_since(start));
   }
   {
