@@ -2,11 +2,15 @@
 // co-simulation); `bench render`: pixels per second per render backend; `bench methods`: CPU time
 // per shading method (Lai and Tai's Table 1).
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <optional>
 
 #include "app/commands.h"
 #include "base/error.h"
+#include "base/output_file.h"
+#include "base/paths.h"
 #include "sim/cosim/bench.h"
 #include "sim/render/render.h"
 
@@ -99,9 +103,41 @@ int bench_methods(const MethodsBench& b) {
 struct BenchCli {
   Target target;
   std::uint64_t vectors = 200000;
+  unsigned jobs = 1;
+  std::string json;
   int radius = 85;
   MethodsBench methods;
 };
+
+nlohmann::json to_json(const BenchRate& b, bool rtl) {
+  nlohmann::json j{{"vectors_per_s", b.vectors_per_s}, {"outputs_per_s", b.outputs_per_s}};
+  if (rtl) j["cycles_per_s"] = b.cycles_per_s;
+  return j;
+}
+
+nlohmann::json to_json(const Loaded& l, const BenchReport& r) {
+  nlohmann::json j{{"pipeline", l.pipeline->name},
+                   {"config", l.cfg.name()},
+                   {"config_path", l.cfg.origin()},
+                   {"vectors", r.vectors},
+                   {"model", to_json(r.model, false)},
+                   {"native", r.native ? to_json(*r.native, false) : nlohmann::json()},
+                   {"rtl", to_json(r.rtl, true)},
+                   {"bare_rtl", to_json(r.bare_rtl, true)},
+                   {"cosim", to_json(r.cosim, false)}};
+  nlohmann::json ratios{{"model_rtl", r.model.outputs_per_s / r.rtl.outputs_per_s},
+                        {"rtl_bare_rtl", r.rtl.cycles_per_s / r.bare_rtl.cycles_per_s},
+                        {"cosim_rtl", r.cosim.outputs_per_s / r.rtl.outputs_per_s}};
+  ratios["model_native"] =
+      r.native ? nlohmann::json(r.model.outputs_per_s / r.native->outputs_per_s) : nlohmann::json();
+  if (r.jobs > 1) {
+    j["cosim_jobs"] = to_json(r.cosim_jobs, false);
+    j["cosim_jobs"]["jobs"] = r.jobs;
+    ratios["jobs_cosim"] = r.cosim_jobs.outputs_per_s / r.cosim.outputs_per_s;
+  }
+  j["ratios"] = ratios;
+  return j;
+}
 
 int run(const BenchCli& c) {
   const Target& t = c.target;
@@ -109,10 +145,30 @@ int run(const BenchCli& c) {
   if (t.pipeline == "methods" && t.config.empty()) return bench_methods(c.methods);
   if (c.vectors == 0) throw Error("--vectors 0: nothing to time");
   const Loaded l = load(t);
+  std::optional<OutputFile> json_file;
+  if (!c.json.empty()) json_file.emplace(c.json);
   const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
-  const BenchReport r = bench(subject_of(l, t, stimulus), c.vectors);
+  // The native kernel implements the default configuration's RTL parameters.
+  const Config default_cfg =
+      Config::load(data_root() / "configs" / l.pipeline->name / "default.toml");
+  NativeKernel native;
+  std::string why_not;
+  if (l.pipeline->native == nullptr) {
+    why_not = "no native kernel for this pipeline";
+  } else if (default_cfg.rtl_parameters() != l.cfg.rtl_parameters()) {
+    why_not =
+        "native kernel: written for default.toml's widths and modes, not this configuration's";
+  } else {
+    native = l.pipeline->native;
+  }
+  BenchReport r = bench(subject_of(l, t, stimulus), c.vectors, native, c.jobs);
+  if (!why_not.empty()) r.native_note = why_not;
   fmt::print("bench {}/{}: {} random vectors each\n{}", l.pipeline->name, l.cfg.name(), c.vectors,
              r.table());
+  if (json_file) {
+    fmt::print(json_file->get(), "{}\n", to_json(l, r).dump(2));
+    json_file->commit();
+  }
   return 0;
 }
 
@@ -126,6 +182,12 @@ void add_bench(CLI::App& app, Action& action) {
                                  "time per shading method");
   c->target.add_options(*cmd);
   add_count(*cmd, "--vectors", c->vectors, "vectors per measurement", kMaxVectors);
+  cmd->add_option("--jobs", c->jobs,
+                  "also time the co-simulation with this many workers (cosim --jobs)")
+      ->check(CLI::Range(1U, 256U))
+      ->capture_default_str();
+  cmd->add_option("--json", c->json,
+                  "write the rates and ratios as JSON (model, native, rtl, bare_rtl, cosim)");
   cmd->add_option("--radius", c->radius,
                   "bench render: shinyballs sphere radius (85: a 511-pixel-wide strip)")
       ->check(CLI::Range(1, 4096))

@@ -133,14 +133,11 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
 
 CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus) {
   Rtl rtl = rtl_of(l, t);
-  return CosimSubject{std::string(l.pipeline->name),
-                      l.cfg,
-                      *l.model,
-                      stimulus,
-                      l.pipeline->independent_vectors,
-                      std::move(rtl.make_dut),
-                      std::move(rtl.label),
-                      std::move(rtl.options)};
+  return CosimSubject{std::string(l.pipeline->name), l.cfg, *l.model, stimulus,
+                      l.pipeline->independent_vectors, std::move(rtl.make_dut),
+                      std::move(rtl.label), std::move(rtl.options),
+                      // The default run (about a million outputs) makes 16 shards.
+                      l.pipeline->default_vectors / 16};
 }
 
 Progress progress_line(bool quiet) {

@@ -258,6 +258,10 @@ void add_cosim(CLI::App& app, Action& action) {
             kMaxCycles);
   add_count(*cmd, "--timeout", c->options.timeout,
             "cycles without a handshake that count as deadlock (0: 100000)", kMaxCycles);
+  cmd->add_option("--jobs", c->options.jobs,
+                  "workers (threads) sharing a run's shards; the results do not depend on it")
+      ->check(CLI::Range(1U, 256U))
+      ->capture_default_str();
   cmd->add_option("--json", c->json, "write a JSON summary (one run)");
   cmd->add_option("--junit", c->junit,
                   "write JUnit XML: one testcase per configuration x stall pattern run");

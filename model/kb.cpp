@@ -14,7 +14,14 @@ KbFormats KbFormats::from_config(const Config& cfg) {
   return f;
 }
 
-KbModel::KbModel(const KbFormats& formats) : f_(formats), sum_(fx::add_format(f_.acc, f_.acc)) {
+KbPlan::KbPlan(const KbFormats& f)
+    : wrap_(fx::add_format(f.acc, f.acc), f.acc, fx::Round::truncate, fx::Overflow::wrap),
+      out_(f.acc, f.out, f.out_round, fx::Overflow::saturate),
+      one_(f.acc.int_bits >= 1 ? std::int64_t{1} << f.acc.frac_bits : f.acc.max_raw()) {}
+
+KbModel::KbModel(const KbFormats& formats, bool stages)
+    : f_(formats), sum_(fx::add_format(f_.acc, f_.acc)), plan_(f_), stages_(stages) {
+  if (!plan_.usable()) stages_ = true;
   inputs_ = {{"n", fx::Format{false, KbFormats::kIndexBits, 0}},
              {"count", fx::Format{false, f_.event_bits, 0}},
              {"f", f_.acc},
@@ -24,8 +31,8 @@ KbModel::KbModel(const KbFormats& formats) : f_(formats), sum_(fx::add_format(f_
   outputs_ = {{"value", f_.out}, {"last", fx::Format{false, 1, 0}}};
 }
 
-std::int64_t KbModel::wrap_add(std::int64_t a, std::int64_t b) const {
-  return fx::resize_raw(a + b, sum_, f_.acc, fx::Round::truncate, fx::Overflow::wrap);
+std::int64_t KbModel::Stages::wrap_add(std::int64_t a, std::int64_t b) const {
+  return fx::resize_raw(a + b, m.sum_, m.f_.acc, fx::Round::truncate, fx::Overflow::wrap);
 }
 
 std::int64_t KbModel::output(std::int64_t f) const {
@@ -33,12 +40,14 @@ std::int64_t KbModel::output(std::int64_t f) const {
                         fx::Overflow::saturate);
 }
 
-void KbModel::pixel(std::int64_t d1_step, std::int64_t d2_step, std::vector<std::int64_t>& out) {
-  out.push_back(output(s_.f));
+template <class Ops>
+void KbModel::pixel(const Ops& ops, std::int64_t d1_step, std::int64_t d2_step,
+                    std::vector<std::int64_t>& out) {
+  out.push_back(ops.output(s_.f));
   out.push_back(s_.i == s_.last ? 1 : 0);
   if (trace_ != nullptr) trace_->push_back(s_.f);
-  s_.f = wrap_add(s_.f, d1_step);
-  s_.d1 = wrap_add(d1_step, d2_step);
+  s_.f = ops.wrap_add(s_.f, d1_step);
+  s_.d1 = ops.wrap_add(d1_step, d2_step);
   s_.d2 = d2_step;
   if (s_.i == s_.last) {
     s_.running = false;
@@ -47,7 +56,32 @@ void KbModel::pixel(std::int64_t d1_step, std::int64_t d2_step, std::vector<std:
   }
 }
 
-std::size_t KbModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+template <class Ops>
+void KbModel::finish_span(const Ops& ops, std::vector<std::int64_t>& out) {
+  // pixel() with the same steps until the span ends, written straight into `out`.
+  const auto count = static_cast<std::size_t>(s_.last - s_.i + 1);
+  const std::size_t at = out.size();
+  out.resize(at + 2 * count);
+  std::int64_t* o = out.data() + at;
+  std::int64_t f = s_.f, d1 = s_.d1;
+  const std::int64_t d2 = s_.d2;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (trace_ != nullptr) trace_->push_back(f);
+    o[2 * k] = ops.output(f);
+    o[2 * k + 1] = 0;
+    f = ops.wrap_add(f, d1);
+    d1 = ops.wrap_add(d1, d2);
+  }
+  o[2 * count - 1] = 1;
+  s_.f = f;
+  s_.d1 = d1;
+  s_.i = s_.last;
+  s_.running = false;
+}
+
+template <class Ops>
+std::size_t KbModel::step(const Ops& ops, std::span<const std::int64_t> in,
+                          std::vector<std::int64_t>& out) {
   const std::size_t before = out.size();
   const std::int64_t n = in[0];
   if (!s_.running && s_.remaining == 0) {  // a header
@@ -61,15 +95,19 @@ std::size_t KbModel::eval(std::span<const std::int64_t> in, std::vector<std::int
   } else if (!s_.running) {  // an event word left over after its span: dropped
     --s_.remaining;
   } else {  // an event word: pixels before its index go out without it
-    while (s_.running && s_.i < n) pixel(s_.d1, s_.d2, out);
+    while (s_.running && s_.i < n) pixel(ops, s_.d1, s_.d2, out);
     if (s_.running) {
-      pixel(in[5] != 0 ? in[3] : s_.d1, in[4], out);
+      pixel(ops, in[5] != 0 ? in[3] : s_.d1, in[4], out);
     }
     --s_.remaining;
   }
   // Once no event can be due, the rest of the span goes out.
-  while (s_.running && s_.remaining == 0) pixel(s_.d1, s_.d2, out);
+  if (s_.running && s_.remaining == 0) finish_span(ops, out);
   return (out.size() - before) / 2;
+}
+
+std::size_t KbModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  return stages_ ? step(Stages{*this}, in, out) : step(plan_, in, out);
 }
 
 }  // namespace phongsim

@@ -8,6 +8,7 @@
 #include "model/config.h"
 #include "model/fixed.h"
 #include "model/pipeline.h"
+#include "model/plan.h"
 
 namespace phongsim {
 
@@ -24,15 +25,41 @@ struct KbFormats {
   static KbFormats from_config(const Config& cfg);
 };
 
+// The engine's arithmetic compiled for one configuration (model/plan.h): the accumulator adders'
+// wrap-around and the output's clamp and requantization as precomputed integer steps.
+class KbPlan {
+ public:
+  KbPlan() = default;
+  explicit KbPlan(const KbFormats& f);
+
+  [[nodiscard]] bool usable() const { return out_.fits_int64() && wrap_.fits_int64(); }
+  [[nodiscard]] std::int64_t wrap_add(std::int64_t a, std::int64_t b) const { return wrap_(a + b); }
+  [[nodiscard]] std::int64_t output(std::int64_t f) const {
+    return out_(std::min(std::max(f, std::int64_t{0}), one_));
+  }
+
+ private:
+  fx::Requant wrap_;      // f + d1 (add_format(acc, acc)) back to acc, wrapping
+  fx::Requant out_;       // clamped accumulator to the output format
+  std::int64_t one_ = 0;  // clamp01's upper bound (acc has no integer bit: never reached)
+};
+
 class KbModel final : public PipelineModel {
  public:
-  explicit KbModel(const KbFormats& formats);
+  // `stages`: evaluate through the fixed-point core operation by operation (the reference the
+  // plan is tested against) instead of the compiled plan.
+  explicit KbModel(const KbFormats& formats, bool stages = false);
 
   [[nodiscard]] const KbFormats& formats() const { return f_; }
 
   // Fields: inputs n, count, f, d1, d2, reload (one word); outputs value, last.
   std::size_t eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) override;
   void reset() override { s_ = State{}; }
+  [[nodiscard]] std::unique_ptr<PipelineModel> clone() const override {
+    auto copy = std::make_unique<KbModel>(*this);
+    copy->trace_ = nullptr;
+    return copy;
+  }
 
   // The output value of an accumulator value: clamp to [0, 1], round to the output format.
   [[nodiscard]] std::int64_t output(std::int64_t f) const;
@@ -48,12 +75,27 @@ class KbModel final : public PipelineModel {
     std::int64_t i = 0, last = 0;
     std::int64_t f = 0, d1 = 0, d2 = 0;
   };
+  // Arithmetic through the fixed-point core (Stages) or the plan.
+  struct Stages {
+    const KbModel& m;
+    [[nodiscard]] std::int64_t wrap_add(std::int64_t a, std::int64_t b) const;
+    [[nodiscard]] std::int64_t output(std::int64_t f) const { return m.output(f); }
+  };
+  template <class Ops>
+  std::size_t step(const Ops& ops, std::span<const std::int64_t> in,
+                   std::vector<std::int64_t>& out);
   // Emits pixel s_.i and steps with (d1_step, d2_step); ends the span after its last pixel.
-  void pixel(std::int64_t d1_step, std::int64_t d2_step, std::vector<std::int64_t>& out);
-  [[nodiscard]] std::int64_t wrap_add(std::int64_t a, std::int64_t b) const;
+  template <class Ops>
+  void pixel(const Ops& ops, std::int64_t d1_step, std::int64_t d2_step,
+             std::vector<std::int64_t>& out);
+  // Emits the rest of the span (no event word is due any more).
+  template <class Ops>
+  void finish_span(const Ops& ops, std::vector<std::int64_t>& out);
 
   KbFormats f_;
   fx::Format sum_;  // f + d1 before wrapping; refused at construction if over the model's limit
+  KbPlan plan_;
+  bool stages_ = false;
   State s_;
   std::vector<std::int64_t>* trace_ = nullptr;
 };

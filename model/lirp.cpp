@@ -17,8 +17,25 @@ LirpFormats LirpFormats::from_config(const Config& cfg) {
   return f;
 }
 
-LirpModel::LirpModel(const LirpFormats& formats) : f_(formats) {
-  // The exact stage formats, as the RTL derives them; each must fit the model's integers.
+LirpPlan::LirpPlan(const LirpFormats& f)
+    : delta_(fx::AddStep::sub(f.p, f.p)),
+      sum_(fx::AddStep::add(f.p, fx::mul_format(f.a, delta_.r))),
+      out_(sum_.r, f.out, f.out_round, f.out_overflow) {}
+
+void LirpPlan::run(const std::int64_t* const* in, std::int64_t* const* out, std::size_t n) const {
+  const std::int64_t* a = in[6];
+  for (int c = 0; c < 3; ++c) {
+    const std::int64_t* p0 = in[c];
+    const std::int64_t* p1 = in[3 + c];
+    std::int64_t* p = out[c];
+    for (std::size_t i = 0; i < n; ++i) p[i] = component(p0[i], p1[i], a[i]);
+  }
+}
+
+namespace {
+
+// The exact stage formats, as the RTL derives them; each must fit the model's integers.
+const LirpFormats& validated(const LirpFormats& f) {
   const auto stage = [](const char* name, auto&& derive) {
     try {
       return derive();
@@ -26,9 +43,15 @@ LirpModel::LirpModel(const LirpFormats& formats) : f_(formats) {
       throw Error(fmt::format("stage {}: {}", name, e.what()));
     }
   };
-  const fx::Format delta = stage("delta (p1 - p0)", [&] { return fx::sub_format(f_.p, f_.p); });
-  const fx::Format prod = stage("prod (a * delta)", [&] { return fx::mul_format(f_.a, delta); });
-  (void)stage("out (p0 + prod)", [&] { return fx::add_format(f_.p, prod); });
+  const fx::Format delta = stage("delta (p1 - p0)", [&] { return fx::sub_format(f.p, f.p); });
+  const fx::Format prod = stage("prod (a * delta)", [&] { return fx::mul_format(f.a, delta); });
+  (void)stage("out (p0 + prod)", [&] { return fx::add_format(f.p, prod); });
+  return f;
+}
+
+}  // namespace
+
+LirpModel::LirpModel(const LirpFormats& formats) : f_(validated(formats)), plan_(f_) {
   for (const char* v : {"p0", "p1"}) {
     for (const char* c : {"x", "y", "z"}) inputs_.push_back({fmt::format("{}_{}", v, c), f_.p});
   }
@@ -47,8 +70,24 @@ LirpStages LirpModel::component(std::int64_t p0, std::int64_t p1, std::int64_t a
 }
 
 std::size_t LirpModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  for (int c = 0; c < 3; ++c) out.push_back(component(in[c], in[3 + c], in[6]).p.raw);
+  for (int c = 0; c < 3; ++c) {
+    out.push_back(plan_.usable() ? plan_.component(in[c], in[3 + c], in[6])
+                                 : component(in[c], in[3 + c], in[6]).p.raw);
+  }
   return 1;
+}
+
+std::size_t LirpModel::eval_batch(std::span<const std::int64_t> in, std::vector<std::int64_t>& out,
+                                  std::vector<std::uint32_t>* counts) {
+  if (!plan_.usable()) return PipelineModel::eval_batch(in, out, counts);
+  const std::size_t n = in.size() / 7;
+  if (counts != nullptr) counts->insert(counts->end(), n, 1);
+  const std::size_t at = out.size();
+  out.resize(at + 3 * n);
+  fx::for_each_block<7, 3>(in.data(), out.data() + at, n,
+                           [this](const std::int64_t* const* soa_in, std::int64_t* const* soa_out,
+                                  std::size_t m) { plan_.run(soa_in, soa_out, m); });
+  return n;
 }
 
 }  // namespace phongsim

@@ -9,6 +9,7 @@
 #include "model/config.h"
 #include "model/fixed.h"
 #include "model/pipeline.h"
+#include "model/plan.h"
 
 namespace phongsim {
 
@@ -31,6 +32,29 @@ struct LirpStages {
   fx::Fixed p;      // stage out:   sum requantized to the output format
 };
 
+// The stages compiled for one configuration (model/plan.h): per component one subtraction, one
+// multiplication, one aligned add and one requantization, all on int64_t.
+class LirpPlan {
+ public:
+  explicit LirpPlan(const LirpFormats& f);
+
+  // False when a step needs more than int64_t (formats near the 63-bit limit): use the stages.
+  [[nodiscard]] bool usable() const { return out_.fits_int64(); }
+
+  [[nodiscard]] std::int64_t component(std::int64_t p0, std::int64_t p1, std::int64_t a) const {
+    return out_(sum_.sum(p0, a * delta_.diff(p1, p0)));
+  }
+
+  // n transactions, structure of arrays: in[f][i] is input field f (inputs() order) of
+  // transaction i, out[f][i] output field f.
+  void run(const std::int64_t* const* in, std::int64_t* const* out, std::size_t n) const;
+
+ private:
+  fx::AddStep delta_;  // p1 - p0
+  fx::AddStep sum_;    // p0 + prod
+  fx::Requant out_;    // sum -> out
+};
+
 class LirpModel final : public PipelineModel {
  public:
   // Derives every stage format up front, so a configuration whose intermediates would not fit
@@ -42,11 +66,19 @@ class LirpModel final : public PipelineModel {
   // One component through all stages; p0, p1 in formats().p, a in formats().a (raw values).
   [[nodiscard]] LirpStages component(std::int64_t p0, std::int64_t p1, std::int64_t a) const;
 
-  // Fields: inputs p0_x p0_y p0_z p1_x p1_y p1_z a; outputs p_x p_y p_z.
+  // Fields: inputs p0_x p0_y p0_z p1_x p1_y p1_z a; outputs p_x p_y p_z. Through the plan.
   std::size_t eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) override;
+  std::size_t eval_batch(std::span<const std::int64_t> in, std::vector<std::int64_t>& out,
+                         std::vector<std::uint32_t>* counts = nullptr) override;
+  [[nodiscard]] std::unique_ptr<PipelineModel> clone() const override {
+    return std::make_unique<LirpModel>(*this);
+  }
+
+  [[nodiscard]] const LirpPlan& plan() const { return plan_; }
 
  private:
   LirpFormats f_;
+  LirpPlan plan_;
 };
 
 }  // namespace phongsim

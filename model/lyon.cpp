@@ -88,6 +88,7 @@ LyonModel::LyonModel(const LyonFormats& formats) : f_(formats) {
   outputs_.push_back({"diff", f_.diff});
   // Every operation's format is data-independent: one evaluation derives (and checks) them all.
   (void)stages({0, 0, 0}, {0, 0, 0}, 0, {0, 0, 0}, {0, 0, 0}, 0);
+  plan_ = LyonPlan(f_);
 }
 
 fx::Fixed LyonModel::rq(fx::Fixed x, fx::Format to) const {
@@ -178,11 +179,34 @@ LyonStages LyonModel::stages(const std::array<std::int64_t, 3>& n0,
 }
 
 std::size_t LyonModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  if (plan_.usable()) {
+    const std::int64_t* fields[14];
+    for (int f = 0; f < 14; ++f) fields[f] = &in[static_cast<std::size_t>(f)];
+    std::int64_t spec = 0, diff = 0;
+    std::int64_t* results[] = {&spec, &diff};
+    plan_.run(fields, results, 1);
+    out.push_back(spec);
+    out.push_back(diff);
+    return 1;
+  }
   const LyonStages s = stages({in[0], in[1], in[2]}, {in[3], in[4], in[5]}, in[6],
                               {in[7], in[8], in[9]}, {in[10], in[11], in[12]}, in[13]);
   out.push_back(s.spec.raw);
   out.push_back(s.diff.raw);
   return 1;
+}
+
+std::size_t LyonModel::eval_batch(std::span<const std::int64_t> in, std::vector<std::int64_t>& out,
+                                  std::vector<std::uint32_t>* counts) {
+  if (!plan_.usable()) return PipelineModel::eval_batch(in, out, counts);
+  const std::size_t n = in.size() / 14;
+  if (counts != nullptr) counts->insert(counts->end(), n, 1);
+  const std::size_t at = out.size();
+  out.resize(at + 2 * n);
+  fx::for_each_block<14, 2>(in.data(), out.data() + at, n,
+                            [this](const std::int64_t* const* soa_in, std::int64_t* const* soa_out,
+                                   std::size_t m) { plan_.run(soa_in, soa_out, m); });
+  return n;
 }
 
 }  // namespace phongsim

@@ -8,6 +8,7 @@
 
 #include "model/config.h"
 #include "model/fixed.h"
+#include "model/lyon_plan.h"
 #include "model/pipeline.h"
 
 namespace phongsim {
@@ -73,7 +74,15 @@ class LyonModel final : public PipelineModel {
                                   const std::array<std::int64_t, 3>& l, std::int64_t shin) const;
 
   // Fields: inputs n0_{x,y,z} n1_{x,y,z} a v_{x,y,z} l_{x,y,z} shin; outputs spec diff.
+  // Through the compiled plan (the stage path when the plan cannot be used).
   std::size_t eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) override;
+  std::size_t eval_batch(std::span<const std::int64_t> in, std::vector<std::int64_t>& out,
+                         std::vector<std::uint32_t>* counts = nullptr) override;
+  [[nodiscard]] std::unique_ptr<PipelineModel> clone() const override {
+    return std::make_unique<LyonModel>(*this);
+  }
+
+  [[nodiscard]] const LyonPlan& plan() const { return plan_; }
 
   // Pipeline latency of the RTL in cycles (pipe_ctrl stages plus the output skid buffer).
   [[nodiscard]] int latency() const { return 13 + f_.k; }
@@ -83,6 +92,7 @@ class LyonModel final : public PipelineModel {
   [[nodiscard]] LyonNormStages normalize(const Vec3Fx& in, fx::Format out, int order) const;
 
   LyonFormats f_;
+  LyonPlan plan_;
 };
 
 }  // namespace phongsim

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -31,8 +32,18 @@ class PipelineModel {
   // every output transaction it produces to `out`, in outputs() order. Returns how many outputs.
   virtual std::size_t eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) = 0;
 
+  // The same for in.size() / inputs().size() transactions back to back: appends every output to
+  // `out` exactly as that many eval() calls would and returns how many. `counts`, when given,
+  // receives each transaction's number of outputs. Models with a compiled plan evaluate whole
+  // blocks at once (structure of arrays inside); the default calls eval() per transaction.
+  virtual std::size_t eval_batch(std::span<const std::int64_t> in, std::vector<std::int64_t>& out,
+                                 std::vector<std::uint32_t>* counts = nullptr);
+
   // Back to the state after construction (for pipelines that keep state between transactions).
   virtual void reset() {}
+
+  // An independent copy, state included (parallel co-simulation gives each worker its own).
+  [[nodiscard]] virtual std::unique_ptr<PipelineModel> clone() const = 0;
 
  protected:
   std::vector<Field> inputs_;

@@ -16,7 +16,81 @@ QuadFormats QuadFormats::from_config(const Config& cfg) {
   return f;
 }
 
-QuadModel::QuadModel(const QuadFormats& formats) : f_(formats) {
+QuadPlan::QuadPlan(const QuadFormats& f)
+    : out_(f.acc, f.out, f.out_round, fx::Overflow::saturate),
+      one_(f.acc.int_bits >= 1 ? std::int64_t{1} << f.acc.frac_bits : f.acc.max_raw()),
+      acc_shift_(64 - f.acc.width()),
+      q_shift_(64 - f.q_bits()),
+      r_mask_((std::uint64_t{1} << f.r_bits()) - 1) {}
+
+std::size_t QuadPlan::walk(const QuadProgram& p, std::vector<std::int64_t>& out) const {
+  if (p.y0 > p.y1) return 0;
+  const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+  std::int64_t col_f[3], col_gy[3], g0[3], a2[3], c2[3], b[3];
+  for (int c = 0; c < 3; ++c) {
+    const QuadChannel& ch = p.channels[c];
+    col_f[c] = ch.f;
+    col_gy[c] = ch.gy;
+    g0[c] = ch.gx;
+    a2[c] = static_cast<std::int64_t>(u(ch.a) << 1);
+    c2[c] = static_cast<std::int64_t>(u(ch.c) << 1);
+    b[c] = ch.b;
+  }
+  std::int64_t q[3], r[3];
+  for (int k = 0; k < 3; ++k) {
+    q[k] = p.edges[k].q;
+    r[k] = p.edges[k].r;
+  }
+  std::size_t pixels = 0;
+  for (int y = p.y0;; ++y) {
+    std::int64_t lower = p.x0;
+    std::int64_t upper = p.x1;
+    for (int k = 0; k < 3; ++k) {
+      if (p.edges[k].kind == 1) lower = std::max(lower, -q[k]);
+      if (p.edges[k].kind == 2) upper = std::min(upper, q[k]);
+    }
+    if (lower <= upper) {
+      const std::int64_t i0 = lower - p.x0;
+      std::int64_t f[3], g[3];
+      for (int c = 0; c < 3; ++c) {
+        const std::uint64_t a = u(p.channels[c].a);
+        f[c] = wrap(u(col_f[c]) + u(i0) * u(g0[c]) + a * (u(i0) * (u(i0) - 1)));
+        g[c] = wrap(u(g0[c]) + ((a * u(i0)) << 1));
+      }
+      const auto count = static_cast<std::size_t>(upper - lower + 1);
+      const std::size_t at = out.size();
+      out.resize(at + 5 * count);
+      std::int64_t* o = out.data() + at;
+      for (std::int64_t x = lower; x <= upper; ++x, o += 5) {
+        o[0] = x;
+        o[1] = y;
+        for (int c = 0; c < 3; ++c) {
+          o[2 + c] = output(f[c]);
+          f[c] = wrap(u(f[c]) + u(g[c]));
+          g[c] = wrap(u(g[c]) + u(a2[c]));
+        }
+      }
+      pixels += count;
+    }
+    if (y == p.y1) break;
+    for (int c = 0; c < 3; ++c) {
+      col_f[c] = wrap(u(col_f[c]) + u(col_gy[c]));
+      col_gy[c] = wrap(u(col_gy[c]) + u(c2[c]));
+      g0[c] = wrap(u(g0[c]) + u(b[c]));
+    }
+    for (int k = 0; k < 3; ++k) {
+      const QuadEdge& e = p.edges[k];
+      const std::int64_t sum = r[k] + e.dr;
+      const bool carry = u(sum) >= u(e.d);
+      q[k] = static_cast<std::int64_t>((u(q[k]) + u(e.dq) + (carry ? 1U : 0U)) << q_shift_) >>
+             q_shift_;
+      r[k] = static_cast<std::int64_t>(u(carry ? sum - e.d : sum) & r_mask_);
+    }
+  }
+  return pixels;
+}
+
+QuadModel::QuadModel(const QuadFormats& formats) : f_(formats), plan_(f_) {
   const fx::Format coord{false, QuadFormats::kCoordBits, 0};
   const fx::Format q{true, f_.q_bits() - 1, 0};
   const fx::Format r{false, f_.r_bits(), 0};
@@ -62,7 +136,8 @@ std::vector<std::int64_t> QuadModel::words(const QuadProgram& p) {
 }
 
 std::size_t QuadModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  return walk(program(in), out);
+  const QuadProgram p = program(in);
+  return plan_.usable() ? plan_.walk(p, out) : walk(p, out);
 }
 
 std::size_t QuadModel::walk(const QuadProgram& p, std::vector<std::int64_t>& out,

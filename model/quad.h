@@ -9,6 +9,7 @@
 #include "model/config.h"
 #include "model/fixed.h"
 #include "model/pipeline.h"
+#include "model/plan.h"
 
 namespace phongsim {
 
@@ -44,6 +45,33 @@ struct QuadProgram {
   std::array<QuadChannel, 3> channels{};  // R, G, B
 };
 
+// The walker's arithmetic compiled for one configuration (model/plan.h): wrap-around of the
+// accumulators and DDA quotients as precomputed sign extensions, the output's clamp and
+// requantization as one step; walk() is QuadModel::walk() with those, writing each row's pixels
+// straight into the output.
+class QuadPlan {
+ public:
+  QuadPlan() = default;
+  explicit QuadPlan(const QuadFormats& f);
+
+  [[nodiscard]] bool usable() const { return out_.fits_int64(); }
+  std::size_t walk(const QuadProgram& p, std::vector<std::int64_t>& out) const;
+
+ private:
+  [[nodiscard]] std::int64_t wrap(std::uint64_t bits) const {  // modulo 2^width(acc), signed
+    return static_cast<std::int64_t>(bits << acc_shift_) >> acc_shift_;
+  }
+  [[nodiscard]] std::int64_t output(std::int64_t f) const {
+    return out_(std::min(std::max(f, std::int64_t{0}), one_));
+  }
+
+  fx::Requant out_;
+  std::int64_t one_ = 0;  // clamp01's upper bound
+  int acc_shift_ = 0;     // 64 - width(acc)
+  int q_shift_ = 0;       // 64 - q_bits
+  std::uint64_t r_mask_ = 0;
+};
+
 class QuadModel final : public PipelineModel {
  public:
   explicit QuadModel(const QuadFormats& formats);
@@ -52,9 +80,15 @@ class QuadModel final : public PipelineModel {
 
   // Fields: x0 y0 x1 y1; e<k>_{kind,q,r,d,dq,dr} for k = 0..2; {r,g,b}_{f,gy,gx,a,b,c};
   // outputs x y r g b.
+  // Through the compiled plan (QuadPlan::walk).
   std::size_t eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) override;
+  [[nodiscard]] std::unique_ptr<PipelineModel> clone() const override {
+    return std::make_unique<QuadModel>(*this);
+  }
+  [[nodiscard]] const QuadPlan& plan() const { return plan_; }
 
-  // The same from a program; `accumulators` (optional) receives each pixel's three channel
+  // The same from a program, operation by operation through the fixed-point core (the stage
+  // path the plan is tested against); `accumulators` (optional) receives each pixel's three channel
   // accumulator values before clamping and rounding (for the drift analysis).
   std::size_t walk(const QuadProgram& p, std::vector<std::int64_t>& out,
                    std::vector<std::int64_t>* accumulators = nullptr) const;
@@ -68,6 +102,7 @@ class QuadModel final : public PipelineModel {
   [[nodiscard]] std::int64_t wrap(std::uint64_t bits) const { return fx::from_bits(bits, f_.acc); }
 
   QuadFormats f_;
+  QuadPlan plan_;
 };
 
 }  // namespace phongsim

@@ -110,6 +110,26 @@ assert r["cycles"] > r["vectors"], r
 EOT
     ;;
 
+  bench-json)
+    # Every pipeline's bench: the native kernel is checked bit-identical to the model on the bench
+    # vectors (an error otherwise), and the JSON has every part and ratio. No timing is asserted.
+    for p in lirp lyon kb quad; do
+      "$phongsim" bench "$p" --vectors 5000 --jobs 2 --json "$tmp/$p.json" >"$tmp/out" 2>&1 ||
+        fail "bench $p: $(cat "$tmp/out")"
+      grep -q "native kernel bit-identical to the model on all 5000 vectors" "$tmp/out" ||
+        fail "bench $p: no native check: $(cat "$tmp/out")"
+      python3 - "$tmp/$p.json" "$p" <<'EOT' || fail "bench $p JSON: $(cat "$tmp/$p.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["pipeline"] == sys.argv[2] and r["config"] == "default" and r["vectors"] == 5000, r
+for part in ("model", "native", "rtl", "bare_rtl", "cosim", "cosim_jobs"):
+    assert r[part]["vectors_per_s"] > 0 and r[part]["outputs_per_s"] > 0, (part, r)
+for ratio in ("model_native", "model_rtl", "rtl_bare_rtl", "cosim_rtl", "jobs_cosim"):
+    assert r["ratios"][ratio] > 0, (ratio, r)
+EOT
+    done
+    ;;
+
   trace)
     "$phongsim" cosim --config "$default" --vectors 100 --trace "$tmp/wave.fst" --trace-window 50 \
       >"$tmp/out" || fail "cosim with --trace failed"

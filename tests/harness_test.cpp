@@ -70,8 +70,9 @@ enum class Fault {
 struct FaultSpec {
   Fault fault = Fault::none;
   std::int64_t k = 0;  // transaction ordinal, in acceptance order from 0; -1 = before the first
-  std::vector<std::int64_t> trigger;  // corrupt_lsb: hit the first transaction with these inputs
-  std::size_t field = 1;              // corrupt_lsb: output field (p_y)
+  std::vector<std::int64_t> trigger;   // corrupt_lsb: hit the first transaction with these inputs
+  std::vector<std::int64_t> trigger2;  // ... or with these
+  std::size_t field = 1;               // corrupt_lsb: output field (p_y)
 };
 
 FaultSpec Inject(Fault fault, std::int64_t k, std::size_t field = 1) {
@@ -208,8 +209,9 @@ class FakeDut final : public phongsim::RtlDut {
     (void)model_.eval(in_, e.out);
     const std::int64_t n = Ordinal(e);
     if (Is(Fault::corrupt_lsb)) {
-      const bool hit =
-          fault_.trigger.empty() ? n == fault_.k : !trigger_used_ && in_ == fault_.trigger;
+      const bool hit = fault_.trigger.empty()
+                           ? n == fault_.k
+                           : !trigger_used_ && (in_ == fault_.trigger || in_ == fault_.trigger2);
       if (hit) {
         trigger_used_ = true;
         e.out[fault_.field] ^= 1;
@@ -279,11 +281,14 @@ class Cosim : public testing::Test {
     return o;
   }
 
-  CosimReport Run(const FaultSpec& fault, const CosimOptions& o, Probe* probe = nullptr) {
+  // shard_vectors > 0: the main run split into shards of about that many vectors (cosim.h).
+  CosimReport Run(const FaultSpec& fault, const CosimOptions& o, Probe* probe = nullptr,
+                  std::uint64_t shard_vectors = 0) {
     const phongsim::DutFactory factory = [&] {
       return DutPtr(new FakeDut(formats_, kLatency, fault, probe), DutDeleter{});
     };
-    const phongsim::CosimSubject subject{"lirp", cfg_, *model_, stimulus_, true, factory};
+    const phongsim::CosimSubject subject{"lirp",  cfg_, *model_, stimulus_,    true,
+                                         factory, "",   "",      shard_vectors};
     return phongsim::cosim(subject, o);
   }
 
@@ -880,6 +885,52 @@ TEST_F(Cosim, BugProtocolAndDeadlockReportsNameTheVector) {
   ASSERT_EQ(deadlock.failure_kind, "deadlock");
   EXPECT_NE(deadlock.failure.find(fmt::format("vector {}", kK + 1)), std::string::npos)
       << deadlock.failure;
+}
+
+// ---- parallel co-simulation: --jobs changes nothing but the time ----
+
+// A main run split into 9 shards (400 vectors each, the last 659), run by 1, 2 and 3 workers:
+// the same verdict, counts, cycles, first failure and summary. With two faulty vectors in
+// different shards (2500 in shard 6, 3600 in shard 8, which a third worker reaches and fails
+// first) the report is always the lower one's.
+TEST_F(Cosim, JobsDoNotChangeTheResult) {
+  constexpr std::uint64_t kShard = 400;
+  const auto same = [](const CosimReport& a, const CosimReport& b, unsigned jobs) {
+    SCOPED_TRACE(jobs);
+    EXPECT_EQ(a.passed, b.passed);
+    EXPECT_EQ(a.failure_kind, b.failure_kind);
+    EXPECT_EQ(a.failure, b.failure);
+    EXPECT_EQ(a.vectors, b.vectors);
+    EXPECT_EQ(a.outputs, b.outputs);
+    EXPECT_EQ(a.mismatches, b.mismatches);
+    EXPECT_EQ(a.cycles, b.cycles);
+    EXPECT_EQ(a.latency_min, b.latency_min);
+    EXPECT_EQ(a.latency_max, b.latency_max);
+    EXPECT_EQ(a.throughput, b.throughput);
+    EXPECT_EQ(a.summary(), b.summary());
+  };
+  CosimOptions o = Options("random:0.3", "random:0.5");
+  o.timeout = 0;
+  const CosimReport pass1 = Run({}, o, nullptr, kShard);
+  EXPECT_TRUE(pass1.passed) << pass1.failure;
+  EXPECT_EQ(pass1.vectors, kVectors);
+  EXPECT_EQ(pass1.outputs, kVectors);
+  // Split: each shard starts on a fresh DUT with its own stalls, so the cycle count differs
+  // from the unsplit run's.
+  EXPECT_NE(pass1.cycles, Run({}, o, nullptr, 0).cycles);
+
+  FaultSpec two = Inject(Fault::corrupt_lsb, 0);
+  two.trigger = Inputs(3600);
+  two.trigger2 = Inputs(kK);
+  const CosimReport fail1 = Run(two, o, nullptr, kShard);
+  ASSERT_EQ(fail1.failure_kind, "mismatch");
+  EXPECT_NE(fail1.failure.find(fmt::format(", vector {} (", kK)), std::string::npos)
+      << fail1.failure;
+  for (const unsigned jobs : {2U, 3U}) {
+    o.jobs = jobs;
+    same(pass1, Run({}, o, nullptr, kShard), jobs);
+    same(fail1, Run(two, o, nullptr, kShard), jobs);
+  }
 }
 
 }  // namespace

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 
+#include "base/error.h"
 #include "sim/cosim/harness.h"
 
 namespace phongsim {
@@ -13,11 +15,55 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+BenchRate rate(std::uint64_t vectors, std::uint64_t outputs, double seconds) {
+  return {static_cast<double>(vectors) / seconds, static_cast<double>(outputs) / seconds, 0};
+}
+
+// The vectors a chunk at a time (outputs of a chunk discarded before the next: a quad bench
+// would otherwise hold gigabytes of pixels). Chunks of about kChunk vectors end where an
+// independent group of vectors begins (Stimulus::group_start: kb's span programs), because a
+// native kernel starts each call from the reset state.
+constexpr std::size_t kChunk = 1024;
+
+// The vector positions where chunks end (the last one `vectors`); bench vector i is stimulus
+// vector first + i.
+std::vector<std::size_t> chunk_ends(const Stimulus& stimulus, std::uint64_t first,
+                                    std::size_t vectors) {
+  std::vector<std::size_t> ends;
+  std::size_t at = 0;
+  while (at < vectors) {
+    std::size_t end = std::min(vectors, at + kChunk);
+    if (end < vectors) {
+      end = static_cast<std::size_t>(
+          std::min<std::uint64_t>(vectors, stimulus.group_start(first + end) - first));
+    }
+    ends.push_back(end);
+    at = end;
+  }
+  return ends;
+}
+
+template <class Eval>
+std::uint64_t run_chunks(std::span<const std::int64_t> inputs, std::size_t n_in,
+                         std::span<const std::size_t> ends, Eval&& eval,
+                         std::vector<std::int64_t>& out) {
+  std::uint64_t outputs = 0;
+  std::size_t at = 0;
+  for (const std::size_t end : ends) {
+    out.clear();
+    outputs += eval(inputs.subspan(at * n_in, (end - at) * n_in), out);
+    at = end;
+  }
+  return outputs;
+}
+
 }  // namespace
 
-BenchReport bench(const CosimSubject& subject, std::uint64_t vectors) {
+BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const NativeKernel& native,
+                  unsigned jobs) {
   BenchReport r;
   r.vectors = vectors;
+  r.jobs = jobs;
   PipelineModel& model = subject.model;
   const Stimulus& stimulus = subject.stimulus;
   const std::size_t n_in = model.inputs().size();
@@ -25,22 +71,42 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors) {
   for (std::uint64_t i = 0; i < vectors; ++i) {
     stimulus.vector(1, stimulus.directed_count() + i, std::span(inputs).subspan(i * n_in, n_in));
   }
+  std::vector<std::int64_t> out;
+  out.reserve(1 << 20);
 
-  const auto rate = [](double vectors_done, double outputs_done, double seconds) {
-    return BenchRate{vectors_done / seconds, outputs_done / seconds};
-  };
+  const std::vector<std::size_t> ends =
+      chunk_ends(stimulus, stimulus.directed_count(), static_cast<std::size_t>(vectors));
+  if (native) {  // bit-identical to the model on these vectors, chunk by chunk (not timed)
+    std::vector<std::int64_t> want;
+    model.reset();
+    std::size_t at = 0;
+    for (const std::size_t end : ends) {
+      const auto chunk = std::span(inputs).subspan(at * n_in, (end - at) * n_in);
+      want.clear();
+      out.clear();
+      (void)model.eval_batch(chunk, want);
+      (void)native(chunk, out);
+      if (out != want) {
+        throw Error(fmt::format(
+            "bench: the native kernel differs from the model on vectors {}..{} (seed 1)",
+            stimulus.directed_count() + at, stimulus.directed_count() + end - 1));
+      }
+      at = end;
+    }
+    r.native_note =
+        fmt::format("native kernel bit-identical to the model on all {} vectors", vectors);
+  }
   {
-    std::vector<std::int64_t> out;
-    out.reserve(1 << 16);
-    std::uint64_t outputs = 0;
     model.reset();
     const auto start = std::chrono::steady_clock::now();
-    for (std::uint64_t i = 0; i < vectors; ++i) {
-      out.clear();
-      outputs += model.eval(std::span(inputs).subspan(i * n_in, n_in), out);
-    }
-    r.model =
-        rate(static_cast<double>(vectors), static_cast<double>(outputs), seconds_since(start));
+    const std::uint64_t outputs = run_chunks(
+        inputs, n_in, ends, [&](auto in, auto& o) { return model.eval_batch(in, o); }, out);
+    r.model = rate(vectors, outputs, seconds_since(start));
+  }
+  if (native) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::uint64_t outputs = run_chunks(inputs, n_in, ends, native, out);
+    r.native = rate(vectors, outputs, seconds_since(start));
   }
   {
     DutPtr dut = subject.make_dut();
@@ -48,34 +114,58 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors) {
     const HarnessResult h = stream_vectors(*dut, n_in, model.outputs().size(), inputs,
                                            [](std::span<const std::int64_t>) {});
     const double s = seconds_since(start);
-    r.rtl = rate(static_cast<double>(h.inputs), static_cast<double>(h.outputs), s);
-    r.rtl_cycles_per_s = static_cast<double>(h.cycles) / s;
+    r.rtl = rate(h.inputs, h.outputs, s);
+    r.rtl.cycles_per_s = static_cast<double>(h.cycles) / s;
   }
   {
+    DutPtr dut = subject.make_dut();
+    dut->bare_load(inputs, n_in);
+    const auto start = std::chrono::steady_clock::now();
+    const BareStats b = dut->bare_run();
+    const double s = seconds_since(start);
+    r.bare_rtl = rate(b.inputs, b.outputs, s);
+    r.bare_rtl.cycles_per_s = static_cast<double>(b.cycles) / s;
+  }
+  for (const unsigned j : {1U, jobs}) {
+    if (j == 1 && r.cosim.outputs_per_s > 0) continue;
     CosimOptions o;
     o.directed = false;
     o.random_vectors = vectors;
     o.measure_vectors = 0;
+    o.jobs = j;
     const auto start = std::chrono::steady_clock::now();
     const CosimReport c = cosim(subject, o);
-    r.cosim =
-        rate(static_cast<double>(c.vectors), static_cast<double>(c.outputs), seconds_since(start));
+    (j == 1 ? r.cosim : r.cosim_jobs) = rate(c.vectors, c.outputs, seconds_since(start));
   }
   return r;
 }
 
 std::string BenchReport::table() const {
-  return fmt::format(
-      "  {:<16} {:>12} {:>12}\n"
-      "  model            {:>12.0f} {:>12.0f}\n"
-      "  Verilated RTL    {:>12.0f} {:>12.0f}   ({:.0f} cycles/s)\n"
-      "  co-simulation    {:>12.0f} {:>12.0f}\n"
-      "  model / RTL      {:>25.2f}x\n"
-      "  co-sim / RTL     {:>25.2f}x\n",
-      "per second", "vectors", "outputs", model.vectors_per_s, model.outputs_per_s,
-      rtl.vectors_per_s, rtl.outputs_per_s, rtl_cycles_per_s, cosim.vectors_per_s,
-      cosim.outputs_per_s, model.outputs_per_s / rtl.outputs_per_s,
-      cosim.outputs_per_s / rtl.outputs_per_s);
+  const auto row = [](std::string_view what, const BenchRate& b, std::string_view extra = "") {
+    return fmt::format("  {:<22} {:>12.0f} {:>12.0f}{}\n", what, b.vectors_per_s, b.outputs_per_s,
+                       extra);
+  };
+  std::string s = fmt::format("  {:<22} {:>12} {:>12}\n", "per second", "vectors", "outputs");
+  s += row("model", model);
+  if (native) s += row("native kernel", *native);
+  s += row("Verilated RTL", rtl, fmt::format("   ({:.0f} cycles/s)", rtl.cycles_per_s));
+  s += row("bare Verilator loop", bare_rtl,
+           fmt::format("   ({:.0f} cycles/s)", bare_rtl.cycles_per_s));
+  s += row("co-simulation", cosim);
+  if (jobs > 1) s += row(fmt::format("co-simulation, {} jobs", jobs), cosim_jobs);
+  const auto ratio = [](std::string_view what, double x) {
+    return fmt::format("  {:<22} {:>25.2f}x\n", what, x);
+  };
+  if (native) s += ratio("model / native", model.outputs_per_s / native->outputs_per_s);
+  s += ratio("model / RTL", model.outputs_per_s / rtl.outputs_per_s);
+  s += ratio("RTL / bare loop", rtl.cycles_per_s / bare_rtl.cycles_per_s);
+  s += ratio("co-sim / RTL", cosim.outputs_per_s / rtl.outputs_per_s);
+  if (jobs > 1) {
+    s +=
+        ratio(fmt::format("{} jobs / 1 job", jobs), cosim_jobs.outputs_per_s / cosim.outputs_per_s);
+  }
+  if (!native_note.empty()) s += "  " + native_note + "\n";
+  return s;
 }
 
 }  // namespace phongsim

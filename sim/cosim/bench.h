@@ -1,10 +1,16 @@
-// Speed of one pipeline configuration: the model alone, the Verilated RTL alone (no checking),
-// and the full co-simulation, in vectors and outputs per second, with their ratios. A benchmark
-// prints numbers; no test asserts a timing.
+// Speed of one pipeline configuration, every part on its own and together, on the same random
+// vectors: the model (its batch API), a hand-written native kernel of the default configuration
+// (the model's headroom), the Verilated RTL through the harness (no checking), the same top in a
+// bare Verilator loop (the harness's headroom), and the full co-simulation; in vectors and outputs
+// per second, with their ratios. A benchmark prints numbers; no test asserts a timing.
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "model/config.h"
 #include "sim/cosim/cosim.h"
@@ -16,17 +22,30 @@ namespace phongsim {
 struct BenchRate {
   double vectors_per_s = 0;
   double outputs_per_s = 0;
+  double cycles_per_s = 0;  // RTL only
 };
+
+// A native kernel: the contract of PipelineModel::eval_batch, from the reset state.
+using NativeKernel =
+    std::function<std::size_t(std::span<const std::int64_t> in, std::vector<std::int64_t>& out)>;
 
 struct BenchReport {
   std::uint64_t vectors = 0;
-  BenchRate model;  // model evaluations alone
-  BenchRate rtl;    // the Verilated RTL alone, outputs discarded
-  BenchRate cosim;  // model, RTL and scoreboard
-  double rtl_cycles_per_s = 0;
-  [[nodiscard]] std::string table() const;  // ratios are of outputs per second
+  BenchRate model;                  // PipelineModel::eval_batch
+  std::optional<BenchRate> native;  // when a native kernel applies to the configuration
+  BenchRate rtl;                    // the Verilated RTL through the harness, outputs discarded
+  BenchRate bare_rtl;               // the Verilated top in a bare loop (RtlDut::bare_run)
+  BenchRate cosim;                  // model, RTL and scoreboard, one worker
+  unsigned jobs = 1;                // > 1: co-simulation with that many workers too
+  BenchRate cosim_jobs;
+  std::string native_note;  // why there is no native figure, or what it was checked against
+
+  [[nodiscard]] std::string table() const;  // ratios are of outputs per second (RTL: cycles)
 };
 
-BenchReport bench(const CosimSubject& subject, std::uint64_t vectors);
+// `native`: the pipeline's kernel when it implements this configuration (else empty); it is run
+// on the bench vectors and must give the model's outputs bit for bit (Error otherwise).
+BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const NativeKernel& native,
+                  unsigned jobs = 1);
 
 }  // namespace phongsim

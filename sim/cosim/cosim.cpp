@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <deque>
+#include <atomic>
+#include <exception>
 #include <limits>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 #include "sim/cosim/harness.h"
@@ -35,37 +38,102 @@ std::string output_table(const std::vector<Field>& fields, const std::int64_t* w
   return s;
 }
 
-// One input transaction between acceptance and its last output.
-struct InFlight {
-  std::uint64_t index = 0;  // vector index
-  std::uint64_t accept_cycle = 0;
-  std::vector<std::int64_t> in;
-  std::vector<std::int64_t> expected;  // count * output fields
-  std::size_t count = 0;
-  std::size_t seen = 0;
-};
-
+// The scoreboard: expected outputs for vectors [first, first + count), computed by the model a
+// batch ahead of the RTL (vectors are a pure function of seed and index, and kb's state follows
+// the index order, which is also the acceptance order), compared with what the RTL produces a
+// batch at a time. An output taken in cycle c is due to the oldest vector accepted before c that
+// still owes outputs; none: an unexpected output.
 class Scoreboard {
  public:
-  Scoreboard(PipelineModel& model) : model_(model) {}
+  static constexpr std::uint64_t kBatch = 1024;
 
-  void accept(std::uint64_t index, std::uint64_t cycle, std::span<const std::int64_t> in) {
-    InFlight t;
-    t.index = index;
-    t.accept_cycle = cycle;
-    t.in.assign(in.begin(), in.end());
-    t.count = model_.eval(in, t.expected);
-    queue_.push_back(std::move(t));
-    drop_finished();
+  Scoreboard(PipelineModel& model, const Stimulus& stimulus, std::uint64_t seed,
+             std::uint64_t first, std::uint64_t count)
+      : model_(model),
+        stimulus_(stimulus),
+        seed_(seed),
+        first_(first),
+        count_(count),
+        n_in_(model.inputs().size()),
+        n_out_(model.outputs().size()) {
+    offset_.push_back(0);
   }
 
-  // Compares one RTL output; on a failure fills kind/report and returns false.
-  bool check(std::span<const std::int64_t> got, std::uint64_t cycle, std::string& kind,
-             std::string& report) {
+  // The vectors from position `pos` (relative to first) on, with the model's outputs for them.
+  InputBatch next(std::uint64_t pos) {
+    const std::uint64_t n = std::min(kBatch, count_ - std::min(count_, pos));
+    inputs_.resize(n * n_in_);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      stimulus_.vector(seed_, first_ + pos + i, std::span(inputs_).subspan(i * n_in_, n_in_));
+    }
+    counts_.clear();
+    (void)model_.eval_batch(inputs_, expected_, &counts_);
+    for (const std::uint32_t c : counts_) offset_.push_back(offset_.back() + c);
+    InputBatch b;
+    b.vectors = inputs_;
+    if (pos + n >= count_) {
+      b.last = true;
+      b.outputs_due = offset_.back() + base_output_;
+    }
+    return b;
+  }
+
+  // Checks a batch (see HarnessHooks::check); on a failure fills kind/report.
+  std::size_t check(std::span<const std::uint64_t> accepted, std::span<const std::int64_t> outputs,
+                    std::span<const std::uint64_t> cycles, std::string& kind, std::string& report) {
+    accept_.insert(accept_.end(), accepted.begin(), accepted.end());
+    for (std::size_t j = 0; j < cycles.size(); ++j) {
+      if (!check_one(outputs.subspan(j * n_out_, n_out_), cycles[j], kind, report)) return j;
+    }
+    compact();
+    return cycles.size();
+  }
+
+  [[nodiscard]] std::string pending() {
+    drop_finished(UINT64_MAX);
+    if (front_ >= accepted()) return "none";
+    return fmt::format(
+        "{} vectors still owe outputs, oldest vector {} (accepted at cycle {}, {} "
+        "of {} outputs seen)",
+        accepted() - front_, index(front_), accept_[front_ - base_], seen_, owed(front_));
+  }
+
+  // The vector whose output is due next, if any.
+  [[nodiscard]] std::optional<std::uint64_t> next_due() {
+    drop_finished(UINT64_MAX);
+    if (front_ >= accepted()) return std::nullopt;
+    return index(front_);
+  }
+
+  [[nodiscard]] std::uint64_t latency_min() const { return latency_min_; }
+  [[nodiscard]] std::uint64_t latency_max() const { return latency_max_; }
+  [[nodiscard]] std::optional<std::uint64_t> failing_index() const { return failing_index_; }
+
+ private:
+  // Positions (relative to first) are kept from base_ on: accept_[p - base_], offset_[p - base_]
+  // (into expected_, whose element 0 is output number base_output_ of the run).
+  [[nodiscard]] std::uint64_t accepted() const { return base_ + accept_.size(); }
+  [[nodiscard]] std::uint64_t index(std::uint64_t pos) const { return first_ + pos; }
+  [[nodiscard]] std::uint64_t owed(std::uint64_t pos) const {
+    return offset_[pos - base_ + 1] - offset_[pos - base_];
+  }
+  [[nodiscard]] const std::int64_t* expected(std::uint64_t pos, std::uint64_t k) const {
+    return expected_.data() + (offset_[pos - base_] + k) * n_out_;
+  }
+  // Vectors accepted before `cycle` whose outputs are all seen leave the front.
+  void drop_finished(std::uint64_t cycle) {
+    while (front_ < accepted() && accept_[front_ - base_] < cycle && seen_ == owed(front_)) {
+      ++front_;
+      seen_ = 0;
+    }
+  }
+
+  bool check_one(std::span<const std::int64_t> got, std::uint64_t cycle, std::string& kind,
+                 std::string& report) {
     const auto& outs = model_.outputs();
     const std::size_t n = outs.size();
-    drop_finished();
-    if (queue_.empty()) {
+    drop_finished(cycle);
+    if (front_ >= accepted() || accept_[front_ - base_] >= cycle) {
       kind = "unexpected output";
       report = fmt::format(
           "UNEXPECTED OUTPUT at cycle {}: the model expects no output now (all {} checked "
@@ -79,85 +147,78 @@ class Scoreboard {
       }
       return false;
     }
-    InFlight& t = queue_.front();
-    const std::int64_t* want = t.expected.data() + t.seen * n;
+    const std::int64_t* want = expected(front_, seen_);
     if (!std::equal(got.begin(), got.end(), want)) {
       kind = "mismatch";
       report = fmt::format("MISMATCH at cycle {}, vector {} (output {} of {} for it){}\n", cycle,
-                           t.index, t.seen + 1, t.count, hint(got));
+                           index(front_), seen_ + 1, owed(front_), hint(got, cycle));
       report += "  inputs:\n";
       const auto& ins = model_.inputs();
+      std::vector<std::int64_t> in(ins.size());
+      stimulus_.vector(seed_, index(front_), in);
       for (std::size_t i = 0; i < ins.size(); ++i) {
-        report += fmt::format("    {}  {}\n", field_head(ins[i]), value_text(ins[i], t.in[i]));
+        report += fmt::format("    {}  {}\n", field_head(ins[i]), value_text(ins[i], in[i]));
       }
       report += output_table(outs, want, got);
-      failing_index_ = t.index;
+      failing_index_ = index(front_);
       return false;
     }
-    if (t.seen == 0) {
-      const std::uint64_t latency = cycle - t.accept_cycle;
+    if (seen_ == 0) {
+      const std::uint64_t latency = cycle - accept_[front_ - base_];
       latency_min_ = std::min(latency_min_, latency);
       latency_max_ = std::max(latency_max_, latency);
     }
     last_.assign(got.begin(), got.end());
-    ++t.seen;
+    ++seen_;
     ++checked_;
     return true;
   }
 
-  // True when every accepted input has produced all its outputs.
-  bool drained() {
-    drop_finished();
-    return queue_.empty();
-  }
-
-  [[nodiscard]] std::string pending() {
-    drop_finished();
-    if (queue_.empty()) return "none";
-    const InFlight& t = queue_.front();
-    return fmt::format(
-        "{} vectors still owe outputs, oldest vector {} (accepted at cycle {}, {} "
-        "of {} outputs seen)",
-        queue_.size(), t.index, t.accept_cycle, t.seen, t.count);
-  }
-
-  // The vector whose output is due next, if any.
-  [[nodiscard]] std::optional<std::uint64_t> next_due() {
-    drop_finished();
-    if (queue_.empty()) return std::nullopt;
-    return queue_.front().index;
-  }
-
-  [[nodiscard]] std::uint64_t latency_min() const { return latency_min_; }
-  [[nodiscard]] std::uint64_t latency_max() const { return latency_max_; }
-  [[nodiscard]] std::optional<std::uint64_t> failing_index() const { return failing_index_; }
-
- private:
-  void drop_finished() {
-    while (!queue_.empty() && queue_.front().seen == queue_.front().count) queue_.pop_front();
-  }
-
-  // Why an output might differ: it belongs to a later vector (reordered/dropped) or repeats the
-  // previous one (duplicated).
-  std::string hint(std::span<const std::int64_t> got) const {
-    const std::size_t n = model_.outputs().size();
+  // Why an output might differ: it belongs to a later vector in flight (reordered/dropped) or
+  // repeats the previous one (duplicated).
+  std::string hint(std::span<const std::int64_t> got, std::uint64_t cycle) const {
+    const std::size_t n = n_out_;
     if (last_.size() == n && std::equal(last_.begin(), last_.end(), got.begin())) {
       return "; it repeats the previous output: duplicated?";
     }
-    for (std::size_t q = 0; q < queue_.size(); ++q) {
-      const InFlight& t = queue_[q];
-      for (std::size_t k = (q == 0 ? t.seen + 1 : 0); k < t.count; ++k) {
-        if (std::equal(got.begin(), got.end(), t.expected.begin() + k * n)) {
+    for (std::uint64_t p = front_; p < accepted() && accept_[p - base_] < cycle; ++p) {
+      for (std::uint64_t k = (p == front_ ? seen_ + 1 : 0); k < owed(p); ++k) {
+        if (std::equal(got.begin(), got.end(), expected(p, k))) {
           return fmt::format("; it is the expected output of vector {}: reordered or dropped?",
-                             t.index);
+                             index(p));
         }
       }
     }
     return "";
   }
 
+  // Forgets vectors that are done, now and then.
+  void compact() {
+    const std::uint64_t done = front_ - base_;
+    if (done < 4 * kBatch) return;
+    const std::uint64_t outputs_done = offset_[done];
+    expected_.erase(expected_.begin(),
+                    expected_.begin() + static_cast<std::ptrdiff_t>(outputs_done * n_out_));
+    accept_.erase(accept_.begin(), accept_.begin() + static_cast<std::ptrdiff_t>(done));
+    offset_.erase(offset_.begin(), offset_.begin() + static_cast<std::ptrdiff_t>(done));
+    for (auto& o : offset_) o -= outputs_done;
+    base_ += done;
+    base_output_ += outputs_done;
+  }
+
   PipelineModel& model_;
-  std::deque<InFlight> queue_;
+  const Stimulus& stimulus_;
+  std::uint64_t seed_, first_, count_;
+  std::size_t n_in_, n_out_;
+  std::vector<std::int64_t> inputs_;  // the batch handed to the harness
+  std::vector<std::uint32_t> counts_;
+  std::vector<std::int64_t> expected_;  // outputs of vectors base_ .. (generated so far)
+  std::vector<std::uint64_t> offset_;   // per vector from base_, into expected_ (in outputs)
+  std::vector<std::uint64_t> accept_;   // acceptance cycle per accepted vector from base_
+  std::uint64_t base_ = 0;
+  std::uint64_t base_output_ = 0;
+  std::uint64_t front_ = 0;  // the vector whose outputs are due next
+  std::uint64_t seen_ = 0;   // of its outputs
   std::vector<std::int64_t> last_;
   std::uint64_t checked_ = 0;
   std::uint64_t latency_min_ = std::numeric_limits<std::uint64_t>::max();
@@ -179,22 +240,13 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, con
                 const HarnessOptions& ho, std::uint64_t first, std::uint64_t count) {
   Phase phase;
   model.reset();
-  Scoreboard board(model);
-  std::vector<std::int64_t> current(model.inputs().size());
+  Scoreboard board(model, stimulus, o.seed, first, count);
   HarnessHooks hooks;
-  hooks.next_input = [&](std::uint64_t pos, std::span<std::int64_t> in) {
-    if (pos >= count) return false;
-    stimulus.vector(o.seed, first + pos, in);
-    std::copy(in.begin(), in.end(), current.begin());
-    return true;
+  hooks.next_inputs = [&](std::uint64_t pos) { return board.next(pos); };
+  hooks.check = [&](std::span<const std::uint64_t> accepted, std::span<const std::int64_t> out,
+                    std::span<const std::uint64_t> cycles) {
+    return board.check(accepted, out, cycles, phase.kind, phase.report);
   };
-  hooks.accepted = [&](std::uint64_t pos, std::uint64_t cycle) {
-    board.accept(first + pos, cycle, current);
-  };
-  hooks.output = [&](std::span<const std::int64_t> out, std::uint64_t cycle) {
-    return board.check(out, cycle, phase.kind, phase.report);
-  };
-  hooks.finished = [&](std::uint64_t) { return board.drained(); };
   phase.harness = run_harness(dut, model.inputs().size(), model.outputs().size(), ho, hooks);
   if (phase.harness.reason == StopReason::deadlock) {
     phase.kind = "deadlock";
@@ -220,6 +272,118 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, con
 // Failures where the harness took an output and the scoreboard rejected it.
 bool rejects_an_output(const std::string& kind) {
   return kind == "mismatch" || kind == "unexpected output";
+}
+
+// A main run of many vectors is split into shards, each run on a fresh DUT (and model) from its
+// first vector, its stall patterns drawn from its own stream position. The split depends only on
+// the run (vectors, pipeline), never on --jobs, so every result is the same however many
+// workers share the shards; jobs 1 runs them one after the other.
+struct Shard {
+  std::uint64_t first = 0;
+  std::uint64_t count = 0;
+  std::uint64_t stream = 0;
+};
+constexpr std::uint64_t kMaxShards = 16;
+
+std::vector<Shard> shards_of(const CosimSubject& s, const CosimOptions& o, std::uint64_t first,
+                             std::uint64_t count) {
+  const bool splittable =
+      !o.only_index && s.shard_vectors > 0 && (s.independent_vectors || s.stimulus.has_groups());
+  const std::uint64_t k =
+      splittable ? std::clamp<std::uint64_t>(count / s.shard_vectors, 1, kMaxShards) : 1;
+  std::vector<Shard> shards;
+  std::uint64_t start = first;
+  for (std::uint64_t i = 1; i <= k; ++i) {
+    const std::uint64_t end =
+        i == k ? first + count
+               : std::min(first + count, s.stimulus.group_start(first + count / k * i));
+    if (end > start || (i == k && shards.empty())) {
+      shards.push_back({start, end - start, shards.size()});
+      start = end;
+    }
+  }
+  return shards;
+}
+
+// Verilated models are created and destroyed one at a time.
+std::mutex dut_mutex;
+
+Phase run_shard(const CosimSubject& s, PipelineModel& model, const Stimulus& stimulus,
+                const CosimOptions& o, HarnessOptions ho, const Shard& shard) {
+  ho.stall_stream = shard.stream;
+  if (shard.stream != 0) ho.trace_path.clear();  // a passing run's waveform: the first cycles
+  DutPtr dut;
+  {
+    const std::lock_guard lock(dut_mutex);
+    dut = s.make_dut();
+  }
+  Phase p = run_phase(model, *dut, stimulus, o, ho, shard.first, shard.count);
+  const std::lock_guard lock(dut_mutex);
+  dut.reset();
+  return p;
+}
+
+struct MainRun {
+  Phase last;                                         // the failing shard's, or the last one's
+  Shard shard;                                        // which
+  std::uint64_t inputs = 0, outputs = 0, cycles = 0;  // summed up to it
+};
+
+// Runs the shards in order, `o.jobs` at a time, up to the first that fails (the lowest-numbered:
+// a worker takes shards in order and finishes the one it has).
+MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOptions& ho,
+                   const std::vector<Shard>& shards) {
+  std::vector<Phase> phases(shards.size());
+  std::size_t failed = shards.size();
+  const std::size_t jobs = std::min<std::size_t>(std::max(o.jobs, 1U), shards.size());
+  if (jobs <= 1) {
+    for (std::size_t k = 0; k < shards.size() && failed == shards.size(); ++k) {
+      phases[k] = run_shard(s, s.model, s.stimulus, o, ho, shards[k]);
+      if (!phases[k].kind.empty()) failed = k;
+    }
+  } else {
+    std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> first_failure{shards.size()};
+    std::mutex error_mutex;
+    std::exception_ptr error;
+    std::vector<std::unique_ptr<PipelineModel>> models;
+    std::vector<Stimulus> stimuli;
+    for (std::size_t w = 0; w < jobs; ++w) {
+      models.push_back(s.model.clone());
+      stimuli.push_back(s.stimulus);
+    }
+    std::vector<std::thread> workers;
+    for (std::size_t w = 0; w < jobs; ++w) {
+      workers.emplace_back([&, w] {
+        try {
+          for (std::size_t k = next++; k < shards.size() && k < first_failure; k = next++) {
+            phases[k] = run_shard(s, *models[w], stimuli[w], o, ho, shards[k]);
+            if (phases[k].kind.empty()) continue;
+            std::size_t f = first_failure;
+            while (k < f && !first_failure.compare_exchange_weak(f, k)) {
+            }
+          }
+        } catch (...) {
+          const std::lock_guard lock(error_mutex);
+          if (!error) error = std::current_exception();
+          first_failure = 0;
+        }
+      });
+    }
+    for (auto& t : workers) t.join();
+    if (error) std::rethrow_exception(error);
+    failed = first_failure;
+  }
+  MainRun run;
+  const std::size_t last = std::min(failed, shards.size() - 1);
+  for (std::size_t k = 0; k <= last; ++k) {
+    run.inputs += phases[k].harness.inputs;
+    run.outputs += phases[k].harness.outputs;
+    run.cycles += phases[k].harness.cycles;
+  }
+  run.last = std::move(phases[last]);
+  run.shard = shards[last];
+  return run;
 }
 
 std::string repro_command(const CosimReport& r, std::optional<std::uint64_t> only) {
@@ -309,14 +473,11 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
     ho.trace_path = options.trace_path;
     ho.trace_to = options.trace_window;
   }
-  Phase main;
-  {
-    DutPtr dut = make_dut();
-    main = run_phase(model, *dut, stimulus, options, ho, first, count);
-  }
-  r.vectors = main.harness.inputs;
-  r.outputs = main.harness.outputs - (rejects_an_output(main.kind) ? 1 : 0);
-  r.cycles = main.harness.cycles;
+  const MainRun run = run_shards(subject, options, ho, shards_of(subject, options, first, count));
+  const Phase& main = run.last;
+  r.vectors = run.inputs;
+  r.outputs = run.outputs - (rejects_an_output(main.kind) ? 1 : 0);
+  r.cycles = run.cycles;
   r.passed = main.kind.empty();
   if (!r.passed) {
     r.mismatches = rejects_an_output(main.kind) ? 1 : 0;
@@ -327,8 +488,9 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
     if (!options.trace_path.empty()) {  // same run again, waveform only around the failure
       ho.trace_from = fail_cycle > options.trace_window ? fail_cycle - options.trace_window : 0;
       ho.trace_to = fail_cycle + 1;
+      ho.stall_stream = run.shard.stream;
       DutPtr dut = make_dut();
-      (void)run_phase(model, *dut, stimulus, options, ho, first, count);
+      (void)run_phase(model, *dut, stimulus, options, ho, run.shard.first, run.shard.count);
       r.failure += fmt::format("  waveform of cycles {}..{}: {}\n", ho.trace_from, ho.trace_to,
                                options.trace_path);
     }

@@ -28,6 +28,7 @@ struct CosimOptions {
   std::uint64_t trace_window = 1000;        // cycles before a failure (or from the start)
   std::uint64_t timeout = 0;                // deadlock timeout in cycles; 0 = harness default
   std::uint64_t measure_vectors = 1000;     // stall-free run that measures throughput/latency
+  unsigned jobs = 1;  // workers sharing the main run's shards (CosimSubject::shard_vectors)
 };
 
 struct CosimReport {
@@ -72,6 +73,11 @@ struct CosimSubject {
   // select it again, for reproduce commands (" --rtl my/lirp --top my_lirp").
   std::string rtl_label;
   std::string rtl_options;
+  // A main run of at least two shards' worth of vectors is split into up to 16 shards of at
+  // least this many, each on a fresh DUT (at group starts when vectors are not independent:
+  // Stimulus::group_start); 0: never split. The split decides every result, --jobs only how many
+  // shards run at once.
+  std::uint64_t shard_vectors = 0;
 };
 
 CosimReport cosim(const CosimSubject& subject, const CosimOptions& options);

@@ -123,9 +123,7 @@ std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
   std::vector<std::int64_t> results;
   if (!make_dut) {
     model.reset();
-    for (std::size_t v = 0; v < count; ++v) {
-      model.eval(std::span(vectors).subspan(v * ins.size(), ins.size()), results);
-    }
+    (void)model.eval_batch(std::span(vectors).first(count * ins.size()), results);
   } else {
     DutPtr dut = make_dut();
     const HarnessResult r = stream_vectors(*dut, ins.size(), outs.size(), vectors,

@@ -2,115 +2,158 @@
 
 #include <fmt/format.h>
 
-#include <optional>
+#include <algorithm>
 #include <vector>
 
 namespace phongsim {
+namespace {
+
+constexpr std::size_t kStallBlock = 4096;   // cycles of stall decisions per refill
+constexpr std::size_t kOutputBlock = 4096;  // outputs (and accepts) recorded per call
+
+// The stall patterns' decisions, drawn every cycle in cycle order (so they do not depend on what
+// the DUT does) a block of cycles ahead.
+class Stalls {
+ public:
+  Stalls(const HarnessOptions& o)
+      : source_(o.source),
+        sink_(o.sink),
+        source_rng_(o.seed, kSourceStream, o.stall_stream),
+        sink_rng_(o.seed, kSinkStream, o.stall_stream),
+        source_bits_(kStallBlock),
+        sink_bits_(kStallBlock) {}
+
+  void next_block(CycleBatch& b) {
+    b.stall_base += b.stall_count;
+    for (std::size_t i = 0; i < kStallBlock; ++i) {
+      source_bits_[i] = source_.active(b.stall_base + i, source_rng_) ? 1 : 0;
+      sink_bits_[i] = sink_.active(b.stall_base + i, sink_rng_) ? 1 : 0;
+    }
+    b.source = source_bits_.data();
+    b.sink = sink_bits_.data();
+    b.stall_count = kStallBlock;
+  }
+
+ private:
+  const StallPattern& source_;
+  const StallPattern& sink_;
+  Rng source_rng_;
+  Rng sink_rng_;
+  std::vector<std::uint8_t> source_bits_;
+  std::vector<std::uint8_t> sink_bits_;
+};
+
+}  // namespace
 
 HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
                           const HarnessOptions& options, const HarnessHooks& hooks) {
-  const std::uint64_t timeout =
-      options.timeout != 0 ? options.timeout
-                           : 100000 + options.source.longest_stall() + options.sink.longest_stall();
-  Rng source_rng(options.seed, kSourceStream, 0);
-  Rng sink_rng(options.seed, kSinkStream, 0);
-  std::vector<std::int64_t> in(input_fields);
-  std::vector<std::int64_t> out(output_fields);
-  std::vector<std::int64_t> held(output_fields);  // output offered but not taken last cycle
+  CycleBatch b;
+  b.input_fields = input_fields;
+  b.output_fields = output_fields;
+  b.timeout = options.timeout != 0
+                  ? options.timeout
+                  : 100000 + options.source.longest_stall() + options.sink.longest_stall();
+  std::vector<std::int64_t> held(output_fields);
+  b.held = held.data();
+  if (!options.trace_path.empty()) {
+    b.trace_path = options.trace_path.c_str();
+    b.trace_from = options.trace_from;
+    b.trace_to = options.trace_to;
+  }
+  // With a waveform, one output per call: a run stopped at a wrong output then dumps no cycle
+  // beyond it.
+  const std::size_t per_call = options.trace_path.empty() ? kOutputBlock : 1;
+  std::vector<std::int64_t> outputs(per_call * output_fields);
+  std::vector<std::uint64_t> output_cycles(per_call);
+  std::vector<std::uint64_t> accept_cycles(kOutputBlock);
+  b.outputs = outputs.data();
+  b.output_cycles = output_cycles.data();
+  b.output_capacity = per_call;
+  b.accept_cycles = accept_cycles.data();
+  b.accept_capacity = accept_cycles.size();
+  Stalls stalls(options);
+  stalls.next_block(b);
 
   HarnessResult r;
+  CycleState st;
   dut.reset();
-  std::uint64_t next_index = 0;
-  bool presenting = false;
-  bool inputs_done = false;
-  bool output_held = false;
-  std::uint64_t last_progress = 0;
-  bool tracing = false;
-  std::optional<std::uint64_t> tail_end;  // set once the hooks say finished
-
-  for (std::uint64_t cycle = 0;; ++cycle) {
-    if (!options.trace_path.empty()) {
-      if (!tracing && cycle == options.trace_from) {
-        dut.open_trace(options.trace_path);
-        tracing = true;
-      } else if (tracing && cycle > options.trace_to) {
-        dut.close_trace();
-        tracing = false;
-      }
-    }
-    // Drive this cycle's inputs while the clock is low. A presented transaction stays until
-    // accepted; the source pattern only decides when the next one starts. Both patterns are
-    // drawn every cycle, so their sequences do not depend on what the DUT does.
-    const bool source_active = options.source.active(cycle, source_rng);
-    const bool sink_active = options.sink.active(cycle, sink_rng);
-    if (!presenting && !inputs_done && source_active) {
-      if (hooks.next_input(next_index, in)) {
-        dut.set_input(in);
-        presenting = true;
-      } else {
-        inputs_done = true;
-      }
-    }
-    const bool ready = sink_active || tail_end.has_value();
-    dut.set_in_valid(presenting);
-    dut.set_out_ready(ready);
-    dut.settle();
-
-    const bool in_fire = presenting && dut.in_ready();
-    const bool out_valid = dut.out_valid();
-    if (out_valid) dut.output(out);
-    if (output_held && (!out_valid || out != held)) {
-      r.reason = StopReason::protocol;
-      r.message = fmt::format("cycle {}: output {} while the sink was stalling it", cycle,
-                              out_valid ? "changed" : "withdrawn (valid dropped)");
-      r.cycles = cycle;
-      return r;
-    }
-    output_held = out_valid && !ready;
-    if (output_held) held = out;
-
-    bool keep_going = true;
-    if (out_valid && ready) {
-      if (r.outputs == 0) r.first_output_cycle = cycle;
-      r.last_output_cycle = cycle;
-      ++r.outputs;
-      last_progress = cycle;
-      keep_going = hooks.output(out, cycle);
-    }
-    dut.clock();
-    if (dut.assertion_failed()) {
-      r.reason = StopReason::protocol;
-      r.message = fmt::format("cycle {}: an RTL assertion failed (message above)", cycle);
-      r.cycles = cycle + 1;
-      return r;
-    }
-    if (in_fire) {
-      hooks.accepted(next_index, cycle);
-      ++next_index;
-      ++r.inputs;
-      presenting = false;
-      last_progress = cycle;
-    }
-    if (!keep_going) {
+  while (true) {
+    dut.run(b, st);
+    const std::uint64_t inputs_before = st.inputs - b.accepts_written;
+    const std::uint64_t outputs_before = st.outputs - b.outputs_written;
+    const std::size_t good =
+        b.accepts_written + b.outputs_written == 0
+            ? 0
+            : hooks.check(std::span(accept_cycles.data(), b.accepts_written),
+                          std::span(outputs.data(), b.outputs_written * output_fields),
+                          std::span(output_cycles.data(), b.outputs_written));
+    // A wrong output stops the run in its cycle, unless an assertion fired in that same cycle
+    // (the assertion is checked first).
+    if (good < b.outputs_written &&
+        !(b.stop == LoopStop::assertion && output_cycles[good] == st.cycle)) {
+      const std::uint64_t at = output_cycles[good];
       r.reason = StopReason::stopped_by_hook;
-      r.cycles = cycle + 1;
+      r.cycles = at + 1;
+      r.outputs = outputs_before + good + 1;
+      r.inputs =
+          inputs_before + static_cast<std::uint64_t>(
+                              std::upper_bound(accept_cycles.begin(),
+                                               accept_cycles.begin() + b.accepts_written, at) -
+                              accept_cycles.begin());
+      r.first_output_cycle = outputs_before == 0 ? output_cycles[0] : st.first_output_cycle;
+      r.last_output_cycle = at;
       return r;
     }
-    if (tail_end) {
-      if (cycle >= *tail_end) return r;
-    } else if (inputs_done && !presenting && hooks.finished(cycle)) {
-      r.cycles = cycle + 1;  // the run proper; the tail only watches for extra outputs
-      tail_end = cycle + kTailCycles;
-      last_progress = cycle;
-    }
-    if (cycle - last_progress > timeout) {
-      r.reason = StopReason::deadlock;
-      if (presenting) r.waiting_input = next_index;
-      r.message = fmt::format(
-          "cycle {}: no handshake for {} cycles ({} inputs accepted, {} outputs taken{})", cycle,
-          timeout, r.inputs, r.outputs, presenting ? ", an input is waiting for in_ready" : "");
-      r.cycles = cycle + 1;
-      return r;
+    b.accepts_written = 0;
+    b.outputs_written = 0;
+    r.inputs = st.inputs;
+    r.outputs = st.outputs;
+    r.first_output_cycle = st.first_output_cycle;
+    r.last_output_cycle = st.last_output_cycle;
+    switch (b.stop) {
+      case LoopStop::need_inputs: {
+        const InputBatch in = hooks.next_inputs(st.next_index);
+        b.inputs = in.vectors.data();
+        b.input_base = st.next_index;
+        b.input_count = in.vectors.size() / input_fields;
+        b.inputs_final = in.last;
+        if (in.last) {
+          if (in.outputs_due) {
+            b.outputs_due = *in.outputs_due;
+          } else {
+            b.drain = kDrainCycles;
+          }
+        }
+        break;
+      }
+      case LoopStop::need_stalls:
+        stalls.next_block(b);
+        break;
+      case LoopStop::buffer_full:
+        break;
+      case LoopStop::finished:
+        r.cycles = st.finish_cycles;
+        return r;
+      case LoopStop::deadlock:
+        r.reason = StopReason::deadlock;
+        if (st.presenting) r.waiting_input = st.next_index;
+        r.message = fmt::format(
+            "cycle {}: no handshake for {} cycles ({} inputs accepted, {} outputs taken{})",
+            st.cycle, b.timeout, r.inputs, r.outputs,
+            st.presenting ? ", an input is waiting for in_ready" : "");
+        r.cycles = st.cycle + 1;
+        return r;
+      case LoopStop::held_changed:
+        r.reason = StopReason::protocol;
+        r.message = fmt::format("cycle {}: output {} while the sink was stalling it", st.cycle,
+                                b.held_withdrawn ? "withdrawn (valid dropped)" : "changed");
+        r.cycles = st.cycle;
+        return r;
+      case LoopStop::assertion:
+        r.reason = StopReason::protocol;
+        r.message = fmt::format("cycle {}: an RTL assertion failed (message above)", st.cycle);
+        r.cycles = st.cycle + 1;
+        return r;
     }
   }
 }
@@ -118,22 +161,20 @@ HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t out
 HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
                              std::span<const std::int64_t> vectors,
                              const std::function<void(std::span<const std::int64_t>)>& on_output) {
-  const std::size_t count = vectors.size() / input_fields;
-  std::uint64_t last_activity = 0;
   HarnessHooks hooks;
-  hooks.next_input = [&](std::uint64_t i, std::span<std::int64_t> v) {
-    if (i >= count) return false;
-    const auto src = vectors.subspan(i * input_fields, input_fields);
-    std::copy(src.begin(), src.end(), v.begin());
-    return true;
+  hooks.next_inputs = [&](std::uint64_t index) {
+    InputBatch in;
+    in.vectors = vectors.subspan(std::min<std::size_t>(index * input_fields, vectors.size()));
+    in.last = true;
+    return in;
   };
-  hooks.accepted = [&](std::uint64_t, std::uint64_t cycle) { last_activity = cycle; };
-  hooks.output = [&](std::span<const std::int64_t> o, std::uint64_t cycle) {
-    on_output(o);
-    last_activity = cycle;
-    return true;
+  hooks.check = [&](std::span<const std::uint64_t>, std::span<const std::int64_t> outputs,
+                    std::span<const std::uint64_t> cycles) {
+    for (std::size_t i = 0; i < cycles.size(); ++i) {
+      on_output(outputs.subspan(i * output_fields, output_fields));
+    }
+    return cycles.size();
   };
-  hooks.finished = [&](std::uint64_t cycle) { return cycle - last_activity >= kDrainCycles; };
   return run_harness(dut, input_fields, output_fields, HarnessOptions{}, hooks);
 }
 

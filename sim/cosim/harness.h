@@ -1,6 +1,8 @@
-// Cycle loop that streams transactions through an RtlDut under source-idle and sink-backpressure
-// patterns and checks the handshake rules. What the transactions mean is left to the caller's
-// hooks: co-simulation (cosim.h) checks outputs against the model, eval collects them.
+// Streams transactions through an RtlDut under source-idle and sink-backpressure patterns and
+// checks the handshake rules. The cycle loop itself is sim/cosim/cycle_loop.h, run by the DUT a
+// batch at a time (inside the plugin for Verilated RTL); the harness feeds it inputs and the
+// stall patterns' decisions and hands what happened to the caller's hooks, which decide what the
+// transactions mean: co-simulation (cosim.h) checks outputs against the model, eval collects them.
 #pragma once
 
 #include <cstdint>
@@ -25,17 +27,33 @@ struct HarnessOptions {
   std::string trace_path;
   std::uint64_t trace_from = 0;
   std::uint64_t trace_to = UINT64_MAX;
+  // Stall patterns of shard k of a co-simulation are drawn from stream position k (0: the whole
+  // run's own), so that shards do not repeat each other's stalls.
+  std::uint64_t stall_stream = 0;
+};
+
+// Input vectors for the harness, from the hook: `vectors` (input fields each, back to back) are
+// the next ones in order and stay valid until the hook is called again. `last`: no vectors after
+// these; `outputs_due` then says how many outputs all the run's vectors owe (the run is finished
+// once they are in), or stays unset when nobody knows (the run then ends kDrainCycles after the
+// last input or output).
+struct InputBatch {
+  std::span<const std::int64_t> vectors;
+  bool last = false;
+  std::optional<std::uint64_t> outputs_due;
 };
 
 struct HarnessHooks {
-  // Fills input transaction `index`; returns false when there are no more.
-  std::function<bool(std::uint64_t index, std::span<std::int64_t> in)> next_input;
-  // The DUT accepted input `index` in `cycle`.
-  std::function<void(std::uint64_t index, std::uint64_t cycle)> accepted;
-  // The DUT produced an output in `cycle`; return false to stop (e.g. on a mismatch).
-  std::function<bool(std::span<const std::int64_t> out, std::uint64_t cycle)> output;
-  // Called once all inputs are accepted: true when no more outputs are due.
-  std::function<bool(std::uint64_t cycle)> finished;
+  // The vectors from input `index` on.
+  std::function<InputBatch(std::uint64_t index)> next_inputs;
+  // What happened since the last call, in order: the acceptance cycle of each input accepted
+  // (inputs are accepted in index order) and each output taken with its cycle. Returns how many
+  // of the outputs are right: all of them to go on; fewer stops the run at the first wrong one
+  // (the hook reports why).
+  std::function<std::size_t(std::span<const std::uint64_t> accepted,
+                            std::span<const std::int64_t> outputs,
+                            std::span<const std::uint64_t> output_cycles)>
+      check;
 };
 
 enum class StopReason { finished, stopped_by_hook, deadlock, protocol };
@@ -51,19 +69,18 @@ struct HarnessResult {
   std::optional<std::uint64_t> waiting_input;  // on deadlock: input presented but not accepted
 };
 
-// Resets the DUT and runs until the hooks say finished, a hook stops the run, no handshake
+// Resets the DUT and runs until the run is finished (every input accepted and every output due
+// taken; then the sink stays ready kTailCycles more cycles so that an extra output after the last
+// expected one still reaches the check hook), the hook stops it at a wrong output, no handshake
 // happens for the timeout, or the DUT breaks the valid/ready rules (an output withdrawn or
-// changed while the sink stalls it, or an RTL assertion). Once finished, it keeps the sink
-// ready for kTailCycles more cycles so that an extra output after the last expected one still
-// reaches the output hook.
-inline constexpr std::uint64_t kTailCycles = 64;
+// changed while the sink stalls it, or an RTL assertion). The result is the same as if every
+// output were checked the cycle it is taken: a run stopped at a wrong output ends in that cycle.
 HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
                           const HarnessOptions& options, const HarnessHooks& hooks);
 
 // Streams `vectors` (flattened, input_fields each) through the DUT without stalls and hands every
 // output to `on_output`, without a model: the run ends once the DUT has been silent for
 // kDrainCycles after the last input and output.
-inline constexpr std::uint64_t kDrainCycles = 1000;
 HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
                              std::span<const std::int64_t> vectors,
                              const std::function<void(std::span<const std::int64_t>)>& on_output);

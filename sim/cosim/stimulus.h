@@ -38,11 +38,24 @@ class Stimulus {
   [[nodiscard]] std::uint64_t directed_count() const { return directed_.size(); }
 
   // Vector `index`: directed_[index] below directed_count(), otherwise random from (seed, index).
+  // Not thread-safe (a RandomFn may cache): a thread uses its own copy.
   void vector(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const;
+
+  // Where a co-simulation may be split (sim/cosim/cosim.h: shards). For vectors that depend on
+  // the ones before them (a span program's words), `starts` gives the first index >= i at which
+  // an independent group of vectors begins; the model and the RTL are back in their reset state
+  // there. Without it, only pipelines with independent vectors are split.
+  using GroupFn = std::function<std::uint64_t(std::uint64_t index)>;
+  void set_groups(GroupFn starts) { groups_ = std::move(starts); }
+  [[nodiscard]] bool has_groups() const { return static_cast<bool>(groups_); }
+  [[nodiscard]] std::uint64_t group_start(std::uint64_t index) const {
+    return groups_ ? groups_(index) : index;
+  }
 
  private:
   std::vector<std::vector<std::int64_t>> directed_;
   RandomFn random_;
+  GroupFn groups_;
 };
 
 // Field-by-field random values (random_raw with corner bias) for the given formats: the default

@@ -7,6 +7,10 @@
 //     map.input(top.in_p0_i, {"p0_x", "p0_y", "p0_z"});  // packed from the LSB up
 //     ...
 //   })
+//
+// The cycle loop (cycle_loop.h) runs here, on the top directly: per cycle two eval() calls and a
+// few byte stores and loads; a transaction's fields are packed into (or read from) its ports by
+// precomputed shifts and masks, one store per port.
 #pragma once
 
 #include <verilated.h>
@@ -14,7 +18,7 @@
 
 #include <fmt/format.h>
 
-#include <functional>
+#include <algorithm>
 #include <initializer_list>
 #include <memory>
 #include <stdexcept>
@@ -26,116 +30,176 @@
 
 namespace phongsim {
 
-namespace detail {
-
-// Bit slices of a Verilated port, whatever C++ type Verilator chose for its width
-// (CData/SData/IData/QData up to 64 bits, VlWide above).
-template <class T>
-void write_bits(T& port, int lsb, int width, std::uint64_t value) {
-  if constexpr (std::is_integral_v<T>) {
-    const std::uint64_t mask = (width == 64 ? ~0ULL : (1ULL << width) - 1) << lsb;
-    port = static_cast<T>((static_cast<std::uint64_t>(port) & ~mask) | ((value << lsb) & mask));
-  } else {
-    for (int b = 0; b < width; ++b) {
-      const int bit = lsb + b;
-      const EData word_mask = EData{1} << (bit % 32);
-      if (((value >> b) & 1U) != 0) {
-        port[bit / 32] |= word_mask;
-      } else {
-        port[bit / 32] &= ~word_mask;
-      }
-    }
-  }
-}
-
-template <class T>
-std::uint64_t read_bits(const T& port, int lsb, int width) {
-  if constexpr (std::is_integral_v<T>) {
-    const std::uint64_t v = static_cast<std::uint64_t>(port) >> lsb;
-    return width == 64 ? v : v & ((1ULL << width) - 1);
-  } else {
-    std::uint64_t v = 0;
-    for (int b = 0; b < width; ++b) {
-      const int bit = lsb + b;
-      v |= static_cast<std::uint64_t>((port[bit / 32] >> (bit % 32)) & 1U) << b;
-    }
-    return v;
-  }
-}
-
-template <class T>
-constexpr int port_capacity() {
-  if constexpr (std::is_integral_v<T>) {
-    return static_cast<int>(8 * sizeof(T));
-  } else {
-    return 32 * static_cast<int>(sizeof(T) / sizeof(EData));
-  }
-}
-
-}  // namespace detail
-
 // Which bits of which port carry each model field. Built once per DUT by the plugin's binder.
 class PortMap {
  public:
   PortMap(const std::vector<Field>& inputs, const std::vector<Field>& outputs)
       : in_fields_(inputs),
         out_fields_(outputs),
-        writers_(inputs.size()),
-        readers_(outputs.size()) {}
+        in_bound_(inputs.size()),
+        out_bound_(outputs.size()) {}
 
   // Fields `names` packed into `port` from bit 0 up, each as wide as its format.
   template <class T>
   void input(T& port, std::initializer_list<std::string_view> names) {
-    int lsb = 0;
-    for (const auto name : names) {
-      const std::size_t i = index_of(in_fields_, name);
-      const int width = in_fields_[i].fmt.width();
-      check_fits(name, lsb + width, detail::port_capacity<T>());
-      writers_[i] = [&port, lsb, width](std::uint64_t bits) {
-        detail::write_bits(port, lsb, width, bits);
-      };
-      lsb += width;
-    }
+    in_ports_.push_back(bind(port, names, in_fields_, in_bound_));
+    image_size_ += in_ports_.back().words == 0 ? 2 : in_ports_.back().words;
   }
 
   template <class T>
   void output(const T& port, std::initializer_list<std::string_view> names) {
-    int lsb = 0;
-    for (const auto name : names) {
-      const std::size_t i = index_of(out_fields_, name);
-      const int width = out_fields_[i].fmt.width();
-      check_fits(name, lsb + width, detail::port_capacity<T>());
-      readers_[i] = [&port, lsb, width]() { return detail::read_bits(port, lsb, width); };
-      lsb += width;
-    }
+    out_ports_.push_back(bind(const_cast<T&>(port), names, out_fields_, out_bound_));
   }
 
   // Every field must be bound exactly once.
   void check_complete() const {
-    for (std::size_t i = 0; i < writers_.size(); ++i) {
-      if (!writers_[i])
+    for (std::size_t i = 0; i < in_bound_.size(); ++i) {
+      if (!in_bound_[i])
         throw std::runtime_error("RTL adapter binds no port to input field " + in_fields_[i].name);
     }
-    for (std::size_t i = 0; i < readers_.size(); ++i) {
-      if (!readers_[i])
+    for (std::size_t i = 0; i < out_bound_.size(); ++i) {
+      if (!out_bound_[i])
         throw std::runtime_error("RTL adapter binds no port to output field " +
                                  out_fields_[i].name);
     }
   }
 
-  void write(std::span<const std::int64_t> fields) const {
-    for (std::size_t i = 0; i < writers_.size(); ++i) {
-      writers_[i](fx::to_bits(fields[i], in_fields_[i].fmt));
+  // A transaction's input ports as an image of image_size() 32-bit words: two (low, high) for
+  // each port up to 64 bits, a wider port's words as Verilator stores them.
+  [[nodiscard]] std::size_t image_size() const { return image_size_; }
+  void pack(std::span<const std::int64_t> fields, std::uint32_t* image) const {
+    for (const Port& p : in_ports_) {
+      if (p.words == 0) {
+        std::uint64_t v = 0;
+        for (const Slice& s : p.slices) {
+          v |= (static_cast<std::uint64_t>(fields[s.field]) & s.mask) << s.lsb;
+        }
+        image[0] = static_cast<std::uint32_t>(v);
+        image[1] = static_cast<std::uint32_t>(v >> 32);
+        image += 2;
+      } else {
+        std::fill(image, image + p.words, 0U);
+        for (const Slice& s : p.slices) {
+          const auto x =
+              static_cast<unsigned __int128>(static_cast<std::uint64_t>(fields[s.field]) & s.mask)
+              << (s.lsb % 32);
+          for (int k = 0; k < 3 && s.lsb / 32 + k < p.words; ++k) {
+            image[s.lsb / 32 + k] |= static_cast<std::uint32_t>(x >> (32 * k));
+          }
+        }
+        image += p.words;
+      }
     }
+  }
+  // Drives the input ports from an image.
+  void load(const std::uint32_t* image) const {
+    for (const Port& p : in_ports_) {
+      if (p.words != 0) {
+        std::copy_n(image, p.words, static_cast<EData*>(p.data));
+        image += p.words;
+        continue;
+      }
+      const std::uint64_t v = image[0] | (static_cast<std::uint64_t>(image[1]) << 32);
+      image += 2;
+      switch (p.bytes) {
+        case 1:
+          *static_cast<CData*>(p.data) = static_cast<CData>(v);
+          break;
+        case 2:
+          *static_cast<SData*>(p.data) = static_cast<SData>(v);
+          break;
+        case 4:
+          *static_cast<IData*>(p.data) = static_cast<IData>(v);
+          break;
+        default:
+          *static_cast<QData*>(p.data) = v;
+      }
+    }
+  }
+  void write(std::span<const std::int64_t> fields) {
+    pack(fields, scratch_.data());
+    load(scratch_.data());
   }
 
   void read(std::span<std::int64_t> fields) const {
-    for (std::size_t i = 0; i < readers_.size(); ++i) {
-      fields[i] = fx::from_bits(readers_[i](), out_fields_[i].fmt);
+    for (const Port& p : out_ports_) {
+      if (p.words == 0) {
+        std::uint64_t v = 0;
+        switch (p.bytes) {
+          case 1:
+            v = *static_cast<const CData*>(p.data);
+            break;
+          case 2:
+            v = *static_cast<const SData*>(p.data);
+            break;
+          case 4:
+            v = *static_cast<const IData*>(p.data);
+            break;
+          default:
+            v = *static_cast<const QData*>(p.data);
+        }
+        for (const Slice& s : p.slices) fields[s.field] = extend(v >> s.lsb, s);
+      } else {
+        const auto* w = static_cast<const EData*>(p.data);
+        for (const Slice& s : p.slices) {
+          unsigned __int128 x = 0;
+          for (int k = 0; k < 3 && s.lsb / 32 + k < p.words; ++k) {
+            x |= static_cast<unsigned __int128>(w[s.lsb / 32 + k]) << (32 * k);
+          }
+          fields[s.field] = extend(static_cast<std::uint64_t>(x >> (s.lsb % 32)), s);
+        }
+      }
     }
   }
 
+  void finish() { scratch_.assign(image_size_, 0); }
+
  private:
+  struct Slice {
+    std::size_t field = 0;
+    int lsb = 0;
+    std::uint64_t mask = 0;  // the field's width of low bits
+    std::uint64_t sign = 0;  // its sign bit when signed (fx::from_bits)
+  };
+  struct Port {
+    void* data = nullptr;
+    int bytes = 0;  // 1, 2, 4 or 8; 0: words 32-bit words (VlWide)
+    int words = 0;
+    std::vector<Slice> slices;
+  };
+
+  static std::int64_t extend(std::uint64_t bits, const Slice& s) {
+    return static_cast<std::int64_t>(((bits & s.mask) ^ s.sign) - s.sign);
+  }
+
+  template <class T>
+  Port bind(T& port, std::initializer_list<std::string_view> names,
+            const std::vector<Field>& fields, std::vector<bool>& bound) {
+    Port p;
+    int capacity = 0;
+    if constexpr (std::is_integral_v<T>) {
+      p.data = &port;
+      p.bytes = static_cast<int>(sizeof(T));
+      capacity = 8 * p.bytes;
+    } else {
+      p.data = port.data();
+      p.words = static_cast<int>(sizeof(T) / sizeof(EData));
+      capacity = 32 * p.words;
+    }
+    int lsb = 0;
+    for (const auto name : names) {
+      const std::size_t i = index_of(fields, name);
+      const fx::Format f = fields[i].fmt;
+      const int width = f.width();
+      check_fits(name, lsb + width, capacity);
+      p.slices.push_back({i, lsb, (std::uint64_t{1} << width) - 1,
+                          f.is_signed ? std::uint64_t{1} << (width - 1) : 0});
+      bound[i] = true;
+      lsb += width;
+    }
+    return p;
+  }
+
   static std::size_t index_of(const std::vector<Field>& fields, std::string_view name) {
     for (std::size_t i = 0; i < fields.size(); ++i) {
       if (fields[i].name == name) return i;
@@ -153,8 +217,12 @@ class PortMap {
 
   std::vector<Field> in_fields_;
   std::vector<Field> out_fields_;
-  std::vector<std::function<void(std::uint64_t)>> writers_;
-  std::vector<std::function<std::uint64_t()>> readers_;
+  std::vector<bool> in_bound_;
+  std::vector<bool> out_bound_;
+  std::vector<Port> in_ports_;
+  std::vector<Port> out_ports_;
+  std::size_t image_size_ = 0;
+  std::vector<std::uint32_t> scratch_;
 };
 
 template <class Top>
@@ -169,6 +237,7 @@ class VerilatedDut final : public RtlDut {
     top_ = std::make_unique<Top>(context_.get(), "top");
     bind(*top_, map_);
     map_.check_complete();
+    map_.finish();
   }
 
   ~VerilatedDut() override {
@@ -194,7 +263,7 @@ class VerilatedDut final : public RtlDut {
 
   void settle() override {
     top_->eval();
-    dump(2 * cycle_);
+    if (trace_) trace_->dump(2 * cycle_);
   }
 
   [[nodiscard]] bool in_ready() const override { return top_->in_ready_o != 0; }
@@ -204,7 +273,7 @@ class VerilatedDut final : public RtlDut {
   void clock() override {
     top_->clk_i = 1;
     top_->eval();
-    dump(2 * cycle_ + 1);
+    if (trace_) trace_->dump(2 * cycle_ + 1);
     top_->clk_i = 0;
     ++cycle_;
   }
@@ -227,6 +296,45 @@ class VerilatedDut final : public RtlDut {
     }
   }
 
+  // The loop instantiated on this class: every per-cycle call above is direct and inlined.
+  void run(CycleBatch& batch, CycleState& state) override { run_cycles(*this, batch, state); }
+
+  void bare_load(std::span<const std::int64_t> vectors, std::size_t input_fields) override {
+    const std::size_t n_in = input_fields;
+    bare_count_ = n_in == 0 ? 0 : vectors.size() / n_in;
+    images_.assign(bare_count_ * map_.image_size(), 0);
+    for (std::size_t i = 0; i < bare_count_; ++i) {
+      map_.pack(vectors.subspan(i * n_in, n_in), images_.data() + i * map_.image_size());
+    }
+  }
+
+  BareStats bare_run() override {
+    reset();
+    BareStats s;
+    const std::size_t n = bare_count_;
+    const std::size_t size = map_.image_size();
+    std::size_t i = 0;
+    if (n > 0) map_.load(images_.data());
+    top_->in_valid_i = n > 0 ? 1 : 0;
+    top_->out_ready_i = 1;
+    std::uint64_t quiet = 0;
+    while (i < n || quiet < kDrainCycles) {
+      top_->eval();
+      const bool fire = top_->in_valid_i != 0 && top_->in_ready_o != 0;
+      const bool out = top_->out_valid_o != 0;
+      top_->clk_i = 1;
+      top_->eval();
+      top_->clk_i = 0;
+      ++s.cycles;
+      s.outputs += out ? 1 : 0;
+      quiet = out || fire ? 0 : quiet + 1;
+      if (fire && ++i < n) map_.load(images_.data() + i * size);
+      if (i == n) top_->in_valid_i = 0;
+    }
+    s.inputs = i;
+    return s;
+  }
+
  private:
   void edge() {
     top_->clk_i = 1;
@@ -234,15 +342,14 @@ class VerilatedDut final : public RtlDut {
     top_->clk_i = 0;
     top_->eval();
   }
-  void dump(std::uint64_t time) {
-    if (trace_) trace_->dump(time);
-  }
 
   std::unique_ptr<VerilatedContext> context_;
   std::unique_ptr<Top> top_;
   PortMap map_;
   std::unique_ptr<VerilatedFstC> trace_;
   std::uint64_t cycle_ = 0;
+  std::vector<std::uint32_t> images_;
+  std::size_t bare_count_ = 0;
 };
 
 }  // namespace phongsim

@@ -153,32 +153,42 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
     d.push_back(event(static_cast<std::int64_t>(e), one >> 6, -(one >> 10), e % 2 == 0));
   }
 
-  // Random: chunk c of kChunkWords words, cached (consecutive indices share a chunk).
+  // Random: chunk c of kChunkWords words, cached (consecutive indices share a chunk). The cache
+  // is part of the function object: a copy of the stimulus (one per co-simulation worker) has its
+  // own.
   struct Cache {
     std::uint64_t seed = 0;
     std::uint64_t chunk = UINT64_MAX;
     std::vector<Word> words;
   };
-  auto cache = std::make_shared<Cache>();
   const std::uint64_t directed = d.size();
   // One program (at most 1 + max_events words) and at least one filler word per chunk.
   const std::uint64_t chunk_words = max_events + 2;
-  auto random = [f, setup, max_events, directed, cache, chunk_words](
-                    std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) {
+  auto random = [f, setup, max_events, directed, cache = Cache{}, chunk_words](
+                    std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) mutable {
     const std::uint64_t r = index - directed;
     const std::uint64_t chunk = r / chunk_words;
-    if (cache->chunk != chunk || cache->seed != seed) {
+    if (cache.chunk != chunk || cache.seed != seed) {
       Rng rng(seed, kStimulusStream, chunk);
-      cache->words =
+      cache.words =
           rng.below(2) == 0 ? random_program(rng, f, max_events) : kb_random_program(rng, f, setup);
-      cache->words.resize(chunk_words, header(0, 0, 0, 0, 0));  // filler: one-pixel spans
-      cache->chunk = chunk;
-      cache->seed = seed;
+      cache.words.resize(chunk_words, header(0, 0, 0, 0, 0));  // filler: one-pixel spans
+      cache.chunk = chunk;
+      cache.seed = seed;
     }
-    const Word& w = cache->words[r % chunk_words];
+    const Word& w = cache.words[r % chunk_words];
     std::copy(w.begin(), w.end(), in.begin());
   };
-  return Stimulus(model, std::move(d), random);
+  Stimulus stimulus(model, std::move(d), random);
+  // Programs start at vector 0, after the directed ones, and at every chunk: each chunk ends in
+  // one-pixel spans, so the engine is idle there. (The directed programs include malformed ones
+  // with left-over event words: they are one group.)
+  stimulus.set_groups([directed, chunk_words](std::uint64_t index) -> std::uint64_t {
+    if (index == 0) return 0;
+    if (index <= directed) return directed;
+    return directed + (index - directed + chunk_words - 1) / chunk_words * chunk_words;
+  });
+  return stimulus;
 }
 
 // ---- analysis ----
@@ -257,6 +267,67 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
 }
 
 int latency(const Config&) { return 2; }  // header word to its first pixel (docs/kb.md)
+
+// configs/kb/default.toml's engine by hand: acc S2.32 (35-bit adders, wrapping), out 0.8 rounded
+// half_even from the accumulator clamped to [0, 1]. The control is KbModel's.
+std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  const auto wrap = [](std::int64_t v) {
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(v) << 29) >> 29;
+  };
+  const auto value = [](std::int64_t f) {
+    f = std::clamp<std::int64_t>(f, 0, std::int64_t{1} << 32);
+    return std::min<std::int64_t>((f + (1 << 23) - 1 + ((f >> 24) & 1)) >> 24, 255);
+  };
+  bool running = false;
+  std::int64_t remaining = 0, i = 0, last = 0, f = 0, d1 = 0, d2 = 0;
+  const auto pixel = [&](std::int64_t d1_step, std::int64_t d2_step) {
+    out.push_back(value(f));
+    out.push_back(i == last ? 1 : 0);
+    f = wrap(f + d1_step);
+    d1 = wrap(d1_step + d2_step);
+    d2 = d2_step;
+    if (i == last) {
+      running = false;
+    } else {
+      ++i;
+    }
+  };
+  const std::size_t before = out.size();
+  for (std::size_t at = 0; at + 6 <= in.size(); at += 6) {
+    const std::int64_t* w = in.data() + at;
+    if (!running && remaining == 0) {
+      running = true;
+      remaining = w[1];
+      i = 0;
+      last = w[0];
+      f = w[2];
+      d1 = w[3];
+      d2 = w[4];
+    } else if (!running) {
+      --remaining;
+    } else {
+      while (running && i < w[0]) pixel(d1, d2);
+      if (running) pixel(w[5] != 0 ? w[3] : d1, w[4]);
+      --remaining;
+    }
+    if (running && remaining == 0) {  // the rest of the span
+      const auto count = static_cast<std::size_t>(last - i + 1);
+      const std::size_t base = out.size();
+      out.resize(base + 2 * count);
+      std::int64_t* o = out.data() + base;
+      for (std::size_t k = 0; k < count; ++k) {
+        o[2 * k] = value(f);
+        o[2 * k + 1] = 0;
+        f = wrap(f + d1);
+        d1 = wrap(d1 + d2);
+      }
+      o[2 * count - 1] = 1;
+      i = last;
+      running = false;
+    }
+  }
+  return (out.size() - before) / 2;
+}
 
 // A word's stages: the accumulator f of every pixel it emits (before clamping and rounding),
 // then that pixel's output value.
@@ -379,6 +450,7 @@ const PipelineInfo& kb_pipeline() {
       .latency = latency,
       .one_per_clock = true,
       .stages = stages,
+      .native = native,
       .float_error = float_error,
       .analyze = analyze,
       .mutants = {{"kb-event-late", "default", "rtl/kb/kb_engine.sv", "(head_n <= i_q)",

@@ -61,6 +61,24 @@ std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_
   return s;
 }
 
+// configs/lirp/default.toml by hand: p S1.10, a 1.10, out S1.10, half_even, saturate. delta S2.10,
+// prod = a·delta S3.20, sum = (p0 << 10) + prod S4.20, p = rq(sum) dropping 10 bits.
+std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  const std::size_t n = in.size() / 7;
+  const std::size_t at = out.size();
+  out.resize(at + 3 * n);
+  std::int64_t* o = out.data() + at;
+  const std::int64_t* v = in.data();
+  for (std::size_t i = 0; i < n; ++i, v += 7, o += 3) {
+    for (int c = 0; c < 3; ++c) {
+      const std::int64_t sum = (v[c] << 10) + v[6] * (v[3 + c] - v[c]);
+      const std::int64_t p = (sum + 511 + ((sum >> 10) & 1)) >> 10;
+      o[c] = std::clamp<std::int64_t>(p, -2048, 2047);
+    }
+  }
+  return n;
+}
+
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
              std::FILE* out) {
   fmt::print(out,
@@ -134,6 +152,7 @@ const PipelineInfo& lirp_pipeline() {
       .latency = latency,
       .one_per_clock = true,
       .stages = stages,
+      .native = native,
       .float_error = lirp_float_error,
       .analyze = analyze,
       .mutants = {{"round", "default", "rtl/common/fx_resize.sv",

@@ -77,6 +77,13 @@ struct PipelineInfo {
   // Every stage value of one input vector (evaluated like eval(): stateful models advance).
   std::vector<StageValue> (*stages)(PipelineModel& model, std::span<const std::int64_t> in);
 
+  // A hand-written kernel of configs/<name>/default.toml, its widths and modes as constants (no
+  // runtime formats): `phongsim bench`'s yardstick for the model, run on every configuration with
+  // the default's RTL parameters and checked bit-identical to the model there. The contract of
+  // PipelineModel::eval_batch (vectors back to back in, every output appended), from the reset
+  // state.
+  std::size_t (*native)(std::span<const std::int64_t> in, std::vector<std::int64_t>& out);
+
   // ---- accuracy ----
   ModelError (*float_error)(const Config& cfg, std::uint64_t samples, std::uint64_t seed);
   // `phongsim analyze <name>`: the approximations and fixed-point error of `configs`, as text.

@@ -238,9 +238,11 @@ class Unit {
     const std::uint64_t count = vectors.size() / n_in;
     std::vector<std::int64_t> out;
     if (backend_ == Backend::model) {
-      for (std::uint64_t i = 0; i < count; ++i) {
-        (void)model_->eval(std::span(vectors).subspan(i * n_in, n_in), out);
-        if (i % 4096 == 0) progress(what, i, count);
+      constexpr std::uint64_t kStep = 4096;
+      for (std::uint64_t i = 0; i < count; i += kStep) {
+        const std::uint64_t n = std::min(kStep, count - i);
+        (void)model_->eval_batch(std::span(vectors).subspan(i * n_in, n * n_in), out);
+        progress(what, i, count);
       }
       return out;
     }

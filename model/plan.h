@@ -1,0 +1,140 @@
+// The steps a model's compiled plan is made of. Formats stay runtime values read from the
+// configuration, but each operation's formats are derived (and checked) once, when the plan is
+// compiled; what remains per vector is integer work on int64_t: alignment shifts, adds,
+// multiplies, and each requantization as one precomputed shift / round / clamp / wrap step.
+// The stage-by-stage path (fx::Fixed, model/fixed.h) stays the reference: every plan is tested
+// bit-identical to it (tests/plan_test.cpp). Specification: docs/fixed-point.md.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "model/fixed.h"
+
+namespace phongsim::fx {
+
+// resize_raw(x, from, to, round, overflow) compiled: branch-free, the same result for every x
+// in `from`'s range (tests/plan_test.cpp checks every value of many formats and modes). Valid
+// only when fits_int64(): the aligned value plus the rounding bias must fit int64_t, which
+// resize_raw's __int128 does not need; a plan with a step that does not fit is not used
+// (its model keeps the stage path).
+class Requant {
+ public:
+  Requant() = default;
+  Requant(Format from, Format to, Round round, Overflow overflow) {
+    const int d = from.frac_bits - to.frac_bits;
+    lshift_ = std::max(-d, 0);
+    rshift_ = std::max(d, 0);
+    if (d > 0) {
+      const std::int64_t half = std::int64_t{1} << (d - 1);
+      bias_ = round == Round::truncate ? 0 : round == Round::half_up ? half : half - 1;
+      odd_ = round == Round::half_even ? 1 : 0;
+    }
+    if (overflow == Overflow::saturate) {
+      lo_ = to.min_raw();
+      hi_ = to.max_raw();
+    } else {  // wrap: the low width bits, read in `to`'s signedness (fx::from_bits)
+      mask_ = static_cast<std::int64_t>((std::uint64_t{1} << to.width()) - 1);
+      sign_ = to.is_signed ? std::int64_t{1} << (to.width() - 1) : 0;
+    }
+    // |raw| < 2^(width - 1) (signed) or 2^width (unsigned), shifted left, plus a bias below
+    // 2^(d - 1) and the odd bit: one bit to spare covers every case.
+    fits_ = from.width() + lshift_ + (rshift_ > 0 ? 1 : 0) <= 62;
+  }
+
+  [[nodiscard]] bool fits_int64() const { return fits_; }
+
+  [[nodiscard]] std::int64_t operator()(std::int64_t v) const {
+    v = static_cast<std::int64_t>(static_cast<std::uint64_t>(v) << lshift_);
+    v = (v + bias_ + ((v >> rshift_) & odd_)) >> rshift_;  // >>: arithmetic, floor
+    v = std::min(std::max(v, lo_), hi_);
+    return ((v & mask_) ^ sign_) - sign_;
+  }
+
+ private:
+  int lshift_ = 0;
+  int rshift_ = 0;
+  std::int64_t bias_ = 0;
+  std::int64_t odd_ = 0;  // half_even: add the kept LSB
+  std::int64_t lo_ = std::numeric_limits<std::int64_t>::min();
+  std::int64_t hi_ = std::numeric_limits<std::int64_t>::max();
+  std::int64_t mask_ = -1;
+  std::int64_t sign_ = 0;
+  bool fits_ = true;
+};
+
+// Exact add and sub (fx::add, fx::sub): both operands shifted left to the result's binary point.
+struct AddStep {
+  Format r;
+  int a = 0;  // left shift of the first operand
+  int b = 0;  // ... of the second
+
+  [[nodiscard]] static AddStep add(Format fa, Format fb) {
+    return aligned(add_format(fa, fb), fa, fb);
+  }
+  [[nodiscard]] static AddStep sub(Format fa, Format fb) {
+    return aligned(sub_format(fa, fb), fa, fb);
+  }
+  [[nodiscard]] std::int64_t sum(std::int64_t x, std::int64_t y) const {
+    return (x << a) + (y << b);
+  }
+  [[nodiscard]] std::int64_t diff(std::int64_t x, std::int64_t y) const {
+    return (x << a) - (y << b);
+  }
+
+ private:
+  static AddStep aligned(Format r, Format fa, Format fb) {
+    return {r, r.frac_bits - fa.frac_bits, r.frac_bits - fb.frac_bits};
+  }
+};
+
+// fx::scale by 2^k: the raw value moves left only when the binary point passes the last
+// fraction bit.
+struct ScaleStep {
+  Format r;
+  int shift = 0;
+
+  [[nodiscard]] static ScaleStep of(Format a, int k) {
+    return {scale_format(a, k), std::max(k - a.frac_bits, 0)};
+  }
+  [[nodiscard]] std::int64_t operator()(std::int64_t x) const { return x << shift; }
+};
+
+// A value of format f is >= 1 (an unsigned value with a bit above the binary point): Lyon's
+// zero comparator. `shift` = frac_bits, or 63 when f has no integer bits (never >= 1).
+struct AtLeastOne {
+  int shift = 63;
+  [[nodiscard]] static AtLeastOne of(Format f) { return {f.int_bits > 0 ? f.frac_bits : 63}; }
+  [[nodiscard]] bool operator()(std::int64_t raw) const { return (raw >> shift) != 0; }
+};
+
+// Runs a structure-of-arrays kernel over n transactions stored back to back (NIn raw inputs
+// each), writing NOut outputs each to `out`: blocks of kBlock transactions are transposed in,
+// computed by kernel(in_fields, out_fields, count) and transposed out.
+inline constexpr std::size_t kBlock = 64;
+
+template <std::size_t NIn, std::size_t NOut, class Kernel>
+void for_each_block(const std::int64_t* in, std::int64_t* out, std::size_t n, Kernel&& kernel) {
+  alignas(64) std::int64_t soa_in[NIn][kBlock];
+  alignas(64) std::int64_t soa_out[NOut][kBlock];
+  const std::int64_t* in_fields[NIn];
+  std::int64_t* out_fields[NOut];
+  for (std::size_t f = 0; f < NIn; ++f) in_fields[f] = soa_in[f];
+  for (std::size_t f = 0; f < NOut; ++f) out_fields[f] = soa_out[f];
+  for (std::size_t base = 0; base < n; base += kBlock) {
+    const std::size_t m = std::min(kBlock, n - base);
+    const std::int64_t* src = in + base * NIn;
+    for (std::size_t i = 0; i < m; ++i) {
+      for (std::size_t f = 0; f < NIn; ++f) soa_in[f][i] = src[i * NIn + f];
+    }
+    kernel(in_fields, out_fields, m);
+    std::int64_t* dst = out + base * NOut;
+    for (std::size_t i = 0; i < m; ++i) {
+      for (std::size_t f = 0; f < NOut; ++f) dst[i * NOut + f] = soa_out[f][i];
+    }
+  }
+}
+
+}  // namespace phongsim::fx

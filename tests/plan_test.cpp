@@ -1,0 +1,243 @@
+// The compiled plans (model/plan.h and each model's plan) against the stage-by-stage path they
+// replace on the hot path: bit-identical in every configuration in configs/. The requantization
+// step exhaustively against fx::resize_raw (every value of every format up to 10 bits into many
+// formats, every mode); LIRP exhaustively over every (p0, p1, a) where the three together are at
+// most 25 bits, random otherwise; Lyon, kb and quad on their co-simulation stimulus (directed
+// corners and seeded random vectors, half of them arbitrary bit patterns) plus, for Lyon, vectors
+// of uniformly random raw fields. A failure names configuration, seed and vector index.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <string>
+#include <vector>
+
+#include "base/rng.h"
+#include "model/config.h"
+#include "model/kb.h"
+#include "model/lirp.h"
+#include "model/lyon.h"
+#include "model/plan.h"
+#include "model/quad.h"
+#include "sim/pipelines/registry.h"
+
+namespace phongsim {
+namespace {
+
+// ---- the requantization step ----
+
+std::vector<fx::Format> SmallFormats(int max_width) {
+  std::vector<fx::Format> f;
+  for (int w = 1; w <= max_width; ++w) {
+    for (int s = 0; s <= 1; ++s) {
+      for (int frac = 0; frac <= w - s; frac += std::max(1, (w - s) / 3)) {
+        f.push_back({s == 1, w - s - frac, frac});
+      }
+    }
+  }
+  return f;
+}
+
+TEST(Requant, EveryValueEveryModeMatchesResizeRaw) {
+  const auto from_formats = SmallFormats(10);
+  const auto to_formats = SmallFormats(9);
+  std::uint64_t checked = 0;
+  for (const fx::Format from : from_formats) {
+    for (const fx::Format to : to_formats) {
+      for (const auto round : {fx::Round::truncate, fx::Round::half_up, fx::Round::half_even}) {
+        for (const auto overflow : {fx::Overflow::wrap, fx::Overflow::saturate}) {
+          const fx::Requant step(from, to, round, overflow);
+          ASSERT_TRUE(step.fits_int64());
+          for (std::int64_t x = from.min_raw(); x <= from.max_raw(); ++x) {
+            ASSERT_EQ(step(x), fx::resize_raw(x, from, to, round, overflow))
+                << from.str() << " -> " << to.str() << " " << fx::to_string(round) << " "
+                << fx::to_string(overflow) << " x = " << x;
+            ++checked;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 1'000'000U);
+}
+
+// Wide formats: range ends, neighbours and random values, up to the int64 limit of the step.
+TEST(Requant, WideFormatsMatchResizeRawWhereTheyFit) {
+  const fx::Format wide[] = {{true, 20, 40}, {false, 30, 30}, {true, 0, 55}, {false, 61, 0},
+                             {true, 2, 32},  {false, 0, 8},   {true, 30, 0}, {false, 10, 50}};
+  Rng rng(1, kStimulusStream, 0);
+  for (const fx::Format from : wide) {
+    for (const fx::Format to : wide) {
+      for (const auto round : {fx::Round::truncate, fx::Round::half_up, fx::Round::half_even}) {
+        for (const auto overflow : {fx::Overflow::wrap, fx::Overflow::saturate}) {
+          const fx::Requant step(from, to, round, overflow);
+          if (!step.fits_int64()) continue;
+          std::vector<std::int64_t> xs{from.min_raw(),     from.min_raw() + 1, -1, 0, 1,
+                                       from.max_raw() - 1, from.max_raw()};
+          for (int i = 0; i < 2000; ++i) {
+            xs.push_back(from.min_raw() +
+                         static_cast<std::int64_t>(rng.below(
+                             static_cast<std::uint64_t>(from.max_raw() - from.min_raw()) + 1)));
+          }
+          for (const std::int64_t x : xs) {
+            if (x < from.min_raw() || x > from.max_raw()) continue;
+            ASSERT_EQ(step(x), fx::resize_raw(x, from, to, round, overflow))
+                << from.str() << " -> " << to.str() << " x = " << x;
+          }
+        }
+      }
+    }
+  }
+}
+
+// ---- every configuration ----
+
+struct Item {
+  const PipelineInfo* pipeline;
+  std::filesystem::path config;
+};
+
+void PrintTo(const Item& it, std::ostream* os) { *os << it.config.string(); }
+
+std::vector<Item> Items() {
+  std::vector<Item> items;
+  for (const PipelineInfo& p : pipelines()) {
+    for (const auto& c : pipeline_configs(p)) items.push_back({&p, c});
+  }
+  return items;
+}
+
+class PlanTest : public ::testing::TestWithParam<Item> {
+ protected:
+  Config cfg_ = Config::load(GetParam().config);
+  std::unique_ptr<PipelineModel> model_ = make_model(*GetParam().pipeline, cfg_);
+  std::string name_ = fmt::format("{}/{}", GetParam().pipeline->name, cfg_.name());
+};
+
+constexpr std::uint64_t kSeed = 1;
+constexpr std::uint64_t kRandomVectors = 20000;
+
+// The pipeline's co-simulation vectors: directed corners then kRandomVectors random ones.
+std::vector<std::int64_t> StimulusVectors(const PipelineInfo& p, const PipelineModel& m,
+                                          const Config& cfg) {
+  const Stimulus stimulus = p.make_stimulus(m, cfg);
+  const std::size_t n_in = m.inputs().size();
+  const std::uint64_t count = stimulus.directed_count() + kRandomVectors;
+  std::vector<std::int64_t> v(count * n_in);
+  for (std::uint64_t i = 0; i < count; ++i) {
+    stimulus.vector(kSeed, i, std::span(v).subspan(i * n_in, n_in));
+  }
+  return v;
+}
+
+TEST_P(PlanTest, PlanIsUsed) {
+  // Every built-in configuration runs the plan (none falls back to the stage path).
+  if (const auto* m = dynamic_cast<const LirpModel*>(model_.get())) {
+    EXPECT_TRUE(m->plan().usable()) << name_;
+  } else if (const auto* m = dynamic_cast<const LyonModel*>(model_.get())) {
+    EXPECT_TRUE(m->plan().usable()) << name_;
+  } else if (const auto* m = dynamic_cast<const QuadModel*>(model_.get())) {
+    EXPECT_TRUE(m->plan().usable()) << name_;
+  } else if (const auto* m = dynamic_cast<const KbModel*>(model_.get())) {
+    EXPECT_TRUE(KbPlan(m->formats()).usable()) << name_;
+  }
+}
+
+TEST_P(PlanTest, PlanEqualsStagePath) {
+  const PipelineInfo& p = *GetParam().pipeline;
+  const std::size_t n_in = model_->inputs().size();
+  const std::size_t n_out = model_->outputs().size();
+
+  if (const auto* lirp = dynamic_cast<const LirpModel*>(model_.get())) {
+    // One component: exhaustive over (p0, p1, a) when they fit 25 bits, else random.
+    const LirpFormats& f = lirp->formats();
+    const int bits = 2 * f.p.width() + f.a.width();
+    const LirpPlan& plan = lirp->plan();
+    std::uint64_t checked = 0;
+    const auto one = [&](std::int64_t p0, std::int64_t p1, std::int64_t a) {
+      ASSERT_EQ(plan.component(p0, p1, a), lirp->component(p0, p1, a).p.raw)
+          << name_ << ": p0 " << p0 << " p1 " << p1 << " a " << a;
+      ++checked;
+    };
+    if (bits <= 25) {
+      for (std::int64_t p0 = f.p.min_raw(); p0 <= f.p.max_raw(); ++p0) {
+        for (std::int64_t p1 = f.p.min_raw(); p1 <= f.p.max_raw(); ++p1) {
+          for (std::int64_t a = f.a.min_raw(); a <= f.a.max_raw(); ++a) one(p0, p1, a);
+        }
+      }
+      EXPECT_EQ(checked, std::uint64_t{1} << bits) << name_;
+    } else {
+      Rng rng(kSeed, kStimulusStream, 0);
+      const auto draw = [&](fx::Format fmt) {
+        return fmt.min_raw() + static_cast<std::int64_t>(rng.below(
+                                   static_cast<std::uint64_t>(fmt.max_raw() - fmt.min_raw()) + 1));
+      };
+      for (int i = 0; i < 2'000'000; ++i) one(draw(f.p), draw(f.p), draw(f.a));
+    }
+  }
+
+  // Whole transactions: eval_batch (the plan, blocks of structure of arrays) against the stage
+  // path, transaction by transaction, in order.
+  std::vector<std::int64_t> vectors = StimulusVectors(p, *model_, cfg_);
+  if (dynamic_cast<const LyonModel*>(model_.get()) != nullptr) {  // plus uniform raw fields
+    Rng rng(kSeed, kStimulusStream, 1);
+    for (int i = 0; i < 20000; ++i) {
+      for (const Field& f : model_->inputs()) {
+        vectors.push_back(f.fmt.min_raw() +
+                          static_cast<std::int64_t>(rng.below(
+                              static_cast<std::uint64_t>(f.fmt.max_raw() - f.fmt.min_raw()) + 1)));
+      }
+    }
+  }
+  std::vector<std::int64_t> got;
+  std::vector<std::uint32_t> counts;
+  model_->reset();
+  (void)model_->eval_batch(vectors, got, &counts);
+  ASSERT_EQ(counts.size(), vectors.size() / n_in);
+
+  std::vector<std::int64_t> want;
+  std::unique_ptr<KbModel> kb_stages;
+  if (const auto* kb = dynamic_cast<const KbModel*>(model_.get())) {
+    kb_stages = std::make_unique<KbModel>(kb->formats(), true);
+  }
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    const auto in = std::span<const std::int64_t>(vectors).subspan(i * n_in, n_in);
+    const std::size_t before = want.size();
+    if (const auto* lirp = dynamic_cast<const LirpModel*>(model_.get())) {
+      for (int c = 0; c < 3; ++c) want.push_back(lirp->component(in[c], in[3 + c], in[6]).p.raw);
+    } else if (const auto* lyon = dynamic_cast<const LyonModel*>(model_.get())) {
+      const LyonStages s = lyon->stages({in[0], in[1], in[2]}, {in[3], in[4], in[5]}, in[6],
+                                        {in[7], in[8], in[9]}, {in[10], in[11], in[12]}, in[13]);
+      want.insert(want.end(), {s.spec.raw, s.diff.raw});
+    } else if (kb_stages) {
+      (void)kb_stages->eval(in, want);
+    } else if (const auto* quad = dynamic_cast<const QuadModel*>(model_.get())) {
+      (void)quad->walk(QuadModel::program(in), want);
+    }
+    const std::size_t k = (want.size() - before) / n_out;
+    ASSERT_EQ(counts[i], k) << name_ << ": seed " << kSeed << " vector " << i;
+    ASSERT_TRUE(std::equal(want.begin() + static_cast<std::ptrdiff_t>(before), want.end(),
+                           got.begin() + static_cast<std::ptrdiff_t>(at)))
+        << name_ << ": seed " << kSeed << " vector " << i;
+    at += k * n_out;
+  }
+  EXPECT_EQ(got, want) << name_;
+
+  // eval() of one transaction at a time is the plan too.
+  std::vector<std::int64_t> single;
+  model_->reset();
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    (void)model_->eval(std::span<const std::int64_t>(vectors).subspan(i * n_in, n_in), single);
+  }
+  EXPECT_EQ(single, want) << name_;
+}
+
+std::string Name(const ::testing::TestParamInfo<Item>& info) {
+  return fmt::format("{}_{}", info.param.pipeline->name, info.param.config.stem().string());
+}
+
+INSTANTIATE_TEST_SUITE_P(Configs, PlanTest, ::testing::ValuesIn(Items()), Name);
+
+}  // namespace
+}  // namespace phongsim
