@@ -10,6 +10,7 @@
 #include "base/file_util.h"
 #include "base/output_file.h"
 #include "base/paths.h"
+#include "sim/explore/search.h"
 #include "sim/explore/sweep.h"
 
 namespace phongsim::cli {

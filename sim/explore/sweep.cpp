@@ -17,6 +17,7 @@
 #include "base/file_util.h"
 #include "base/output_file.h"
 #include "base/paths.h"
+#include "sim/explore/spec_file.h"
 #include "sim/pipelines/registry.h"
 #include "sim/render/plot.h"
 #include "sim/render/render.h"
@@ -25,30 +26,7 @@ namespace phongsim {
 namespace {
 
 namespace fs = std::filesystem;
-
-int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
-
-[[noreturn]] void fail_at(const fs::path& file, const toml::node& n, const std::string& what) {
-  throw Error(fmt::format("{}:{}: {}", file.string(), line_of(n), what));
-}
-
-toml::table parse_file(const fs::path& file) {
-  try {
-    return toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw Error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
-  }
-}
-
-// A path in a sweep file: relative to the file's directory, else to the source tree.
-fs::path resolve(const fs::path& file, const std::string& p) {
-  const fs::path near = file.parent_path() / p;
-  if (fs::exists(near)) return near;
-  const fs::path tree = data_root() / p;
-  if (fs::exists(tree)) return tree;
-  throw Error(fmt::format("{}: {} does not exist (looked next to the file and in the source tree)",
-                          file.string(), p));
-}
+using namespace explore;
 
 std::string literal(const toml::node& n) {
   std::ostringstream s;
@@ -62,45 +40,10 @@ std::string literal(const toml::node& n) {
   return s.str();
 }
 
-// The point's configuration: the base with the axis values replaced.
-std::string point_toml(const fs::path& base,
-                       const std::vector<std::pair<std::string, std::string>>& values,
-                       const std::string& header, const std::string& description) {
-  toml::table t = parse_file(base);
-  if (!description.empty()) t.insert_or_assign("description", description);
-  for (const auto& [key, value] : values) {
-    const auto dot = key.find('.');
-    const std::string section = key.substr(0, dot);
-    const std::string name = key.substr(dot + 1);
-    auto* table = t[section].as_table();
-    if (table == nullptr || !table->contains(name)) {
-      throw Error(fmt::format("{}: has no [{}] {} to sweep", base.string(), section, name));
-    }
-    const toml::table v = toml::parse("v = " + value);
-    table->insert_or_assign(name, *v.get("v"));
-  }
-  std::ostringstream s;
-  s << header << t << "\n";
-  return s.str();
-}
-
 std::string describe(const std::vector<std::pair<std::string, std::string>>& values) {
   std::string d;
   for (const auto& [k, v] : values) d += fmt::format("{}{}={}", d.empty() ? "" : ", ", k, v);
   return d;
-}
-
-// `method` on `scene` through the unit configuration `config` (model backend) against float
-// Phong.
-ImageMetrics scene_metrics(const std::string& scene, const std::string& method, int size,
-                           const fs::path& config) {
-  RenderOptions o;
-  o.scene = scene;
-  o.methods = {method};
-  o.backend = Backend::model;
-  o.size = size;
-  o.unit_config = config.string();
-  return render(o, [](std::string_view, std::uint64_t, std::uint64_t) {}).results.front().metrics;
 }
 
 std::string unquote(std::string v) {  // TOML string literals: "..." or '...'
@@ -116,7 +59,7 @@ SweepSpec load_sweep(const fs::path& file) {
   SweepSpec s;
   s.file = file;
   s.name = file.stem().string();
-  const toml::table t = parse_file(file);
+  const toml::table t = parse_toml(file);
   const std::set<std::string> known{"name",  "base",   "bases", "axes",
                                     "error", "scenes", "synth", "plot"};
   for (const auto& [k, v] : t) {
@@ -128,12 +71,12 @@ SweepSpec load_sweep(const fs::path& file) {
     }
   }
   if (const auto n = t["name"].value<std::string>()) s.name = *n;
-  if (const auto b = t["base"].value<std::string>()) s.bases.push_back(resolve(file, *b));
+  if (const auto b = t["base"].value<std::string>()) s.bases.push_back(resolve_path(file, *b));
   if (const auto* arr = t["bases"].as_array()) {
     for (const auto& b : *arr) {
       const auto p = b.value<std::string>();
       if (!p) fail_at(file, b, "bases: expected strings");
-      s.bases.push_back(resolve(file, *p));
+      s.bases.push_back(resolve_path(file, *p));
     }
   }
   if (s.bases.empty())
@@ -167,7 +110,7 @@ SweepSpec load_sweep(const fs::path& file) {
         }
         const auto lo = (*fr)[0].value<std::int64_t>().value();
         const auto hi = (*fr)[1].value<std::int64_t>().value();
-        const toml::table base = parse_file(s.bases.front());
+        const toml::table base = parse_toml(s.bases.front());
         const auto fmt_text = base["format"][axis.key.substr(dot + 1)].value<std::string>();
         if (!fmt_text) {
           fail_at(
@@ -379,12 +322,6 @@ PointResult from_json(const nlohmann::json& j) {
   r.latency = j.at("latency").get<int>();
   r.seconds = j.at("seconds").get<double>();
   return r;
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  OutputFile f(path);
-  std::fputs(text.c_str(), f.get());
-  f.commit();
 }
 
 fs::path point_path(const fs::path& out, std::size_t i) {
@@ -602,178 +539,6 @@ std::vector<PointResult> run_sweep(const SweepSpec& spec, const fs::path& out,
   }
   progress(points.size(), points.size());
   return merge_sweep(spec, out);
-}
-
-// ---- Minimum-width search ----
-
-SearchSpec load_search(const fs::path& file) {
-  SearchSpec s;
-  s.file = file;
-  s.name = file.stem().string();
-  const toml::table t = parse_file(file);
-  for (const auto& [k, v] : t) {
-    const std::string key(k.str());
-    if (key == "name" && v.is_string()) {
-      s.name = *v.value<std::string>();
-    } else if (key == "base" && v.is_string()) {
-      s.base = resolve(file, *v.value<std::string>());
-    } else if (key == "signals" && v.is_array()) {
-      for (const auto& x : *v.as_array()) {
-        if (!x.is_string()) fail_at(file, x, "signals: expected [format] key names");
-        s.signals.push_back(*x.value<std::string>());
-      }
-    } else if (key == "min_frac" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
-      s.min_frac = static_cast<int>(*v.value<std::int64_t>());
-    } else if (key == "max_lsb" && (v.is_floating_point() || v.is_integer()) &&
-               *v.value<double>() > 0) {
-      s.max_lsb = *v.value<double>();
-    } else if (key == "min_colour_correctness" && (v.is_floating_point() || v.is_integer()) &&
-               *v.value<double>() > 0 && *v.value<double>() <= 1) {
-      s.min_colour_correctness = *v.value<double>();
-    } else if (key == "scene" && v.is_string()) {
-      s.scene = *v.value<std::string>();
-    } else if (key == "method" && v.is_string()) {
-      s.method = *v.value<std::string>();
-    } else if (key == "scene_size" && v.is_integer() && *v.value<std::int64_t>() >= 1 &&
-               *v.value<std::int64_t>() <= 2048) {
-      s.scene_size = static_cast<int>(*v.value<std::int64_t>());
-    } else if (key == "samples" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
-      s.samples = static_cast<std::uint64_t>(*v.value<std::int64_t>());
-    } else if (key == "seed" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
-      s.seed = static_cast<std::uint64_t>(*v.value<std::int64_t>());
-    } else if (key == "verify_vectors" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
-      s.verify_vectors = static_cast<std::uint64_t>(*v.value<std::int64_t>());
-    } else {
-      fail_at(file, v,
-              fmt::format("unexpected '{}' (expected name, base, signals, min_frac, "
-                          "max_lsb > 0, min_colour_correctness in (0, 1], scene, method, "
-                          "scene_size, samples, seed, verify_vectors)",
-                          key));
-    }
-  }
-  if (s.base.empty()) throw Error(fmt::format("{}: no base configuration", file.string()));
-  if (std::isinf(s.max_lsb) && s.min_colour_correctness == 0) {
-    throw Error(fmt::format("{}: no budget (max_lsb or min_colour_correctness)", file.string()));
-  }
-  if (s.min_colour_correctness > 0) {
-    if (s.scene.empty() || s.method.empty()) {
-      throw Error(fmt::format("{}: min_colour_correctness needs scene and method", file.string()));
-    }
-    const MethodInfo& m = find_method(s.method);
-    const std::string pipeline = Config::load(s.base).pipeline();
-    if (fs::path(std::string(m.config)).parent_path() != pipeline) {
-      throw Error(fmt::format("{}: method '{}' does not run on a {} unit", file.string(), s.method,
-                              pipeline));
-    }
-  }
-  if (s.signals.empty()) throw Error(fmt::format("{}: no signals to narrow", file.string()));
-  const toml::table base = parse_file(s.base);
-  for (const auto& sig : s.signals) {
-    if (!base["format"][sig].is_string()) {
-      throw Error(fmt::format("{}: signal '{}' is not a [format] key of {}", file.string(), sig,
-                              s.base.string()));
-    }
-  }
-  return s;
-}
-
-SearchResult search_min_width(const SearchSpec& spec,
-                              const std::function<void(std::string_view)>& note) {
-  const toml::table base = parse_file(spec.base);
-  std::map<std::string, fx::Format> formats;
-  for (const auto& sig : spec.signals)
-    formats[sig] = fx::Format::parse(*base["format"][sig].value<std::string>());
-  SearchResult result;
-  const auto candidate = [&](const std::map<std::string, fx::Format>& f) {
-    std::vector<std::pair<std::string, std::string>> values;
-    for (const auto& sig : spec.signals)
-      values.emplace_back("format." + sig, fmt::format("\"{}\"", f.at(sig).str()));
-    return values;
-  };
-  // Candidates are files (the renderer loads them): in a directory of their own.
-  const fs::path dir =
-      fs::temp_directory_path() / fmt::format("phongsim-search-{}-{}", spec.name, getpid());
-  fs::create_directories(dir);
-  const std::shared_ptr<void> cleanup(nullptr, [dir](void*) {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  });
-  struct Evaluation {
-    ModelError error;
-    double cc = NAN;
-    [[nodiscard]] std::string str() const {
-      return std::isnan(cc) ? fmt::format("max error {:.4g} LSB", error.max_lsb)
-                            : fmt::format("max error {:.4g} LSB, colour correctness {:.5f}",
-                                          error.max_lsb, cc);
-    }
-  };
-  // Evaluates a candidate, or nothing when the pipeline refuses it.
-  const auto try_formats =
-      [&](const std::map<std::string, fx::Format>& f) -> std::optional<Evaluation> {
-    ++result.evaluations;
-    try {
-      const fs::path file = dir / (spec.name + ".toml");
-      write_text(file, point_toml(spec.base, candidate(f), "", ""));
-      const Config cfg = Config::load(file);
-      const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
-      (void)make_model(pipeline, cfg);
-      Evaluation e{pipeline.float_error(cfg, spec.samples, spec.seed)};
-      if (spec.min_colour_correctness > 0) {
-        e.cc = scene_metrics(spec.scene, spec.method, spec.scene_size, file).colour_correctness;
-      }
-      return e;
-    } catch (const Error&) {
-      return std::nullopt;
-    }
-  };
-  const auto within = [&](const Evaluation& e) {
-    return e.error.max_lsb <= spec.max_lsb &&
-           (std::isnan(e.cc) || e.cc >= spec.min_colour_correctness);
-  };
-  const auto first = try_formats(formats);
-  if (!first)
-    throw Error(fmt::format("{}: the base configuration does not evaluate", spec.file.string()));
-  if (!within(*first)) {
-    throw Error(fmt::format("{}: the base already misses the budget ({})", spec.file.string(),
-                            first->str()));
-  }
-  result.error = first->error;
-  result.colour_correctness = first->cc;
-  note(fmt::format("base: {}", first->str()));
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const auto& sig : spec.signals) {
-      while (formats[sig].frac_bits > spec.min_frac) {
-        auto next = formats;
-        next[sig].frac_bits -= 1;
-        const auto e = try_formats(next);
-        if (!e || !within(*e)) break;
-        formats = next;
-        result.error = e->error;
-        result.colour_correctness = e->cc;
-        ++result.bits_saved;
-        changed = true;
-        note(fmt::format("{} -> {}: {}", sig, formats[sig].str(), e->str()));
-      }
-    }
-  }
-  for (const auto& sig : spec.signals) result.formats.emplace_back(sig, formats[sig].str());
-  std::string values;
-  for (const auto& [k, v] : result.formats)
-    values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", k, v);
-  result.toml = point_toml(
-      spec.base, candidate(formats),
-      fmt::format("# Found by `phongsim sweep search {}`: the narrowest fraction "
-                  "bits of {} within the budget ({} samples, seed {}).\n"
-                  "# Base {}; {}; max error {:.4g} LSB{}.\n",
-                  spec.file.filename().string(), fmt::join(spec.signals, ", "), spec.samples,
-                  spec.seed, spec.base.filename().string(), values, result.error.max_lsb,
-                  std::isnan(result.colour_correctness)
-                      ? ""
-                      : fmt::format(", colour correctness {:.5f} on {} ({})",
-                                    result.colour_correctness, spec.scene, spec.method)),
-      fmt::format("found by search {}: max error {:.4g} LSB", spec.name, result.error.max_lsb));
-  return result;
 }
 
 }  // namespace phongsim

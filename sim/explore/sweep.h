@@ -2,8 +2,8 @@
 // and axes of [format]/[mode]/[param]/[setup] values; every point of the grid is written as a
 // configuration file and evaluated: model error against the pipeline's float reference,
 // optionally colour correctness and PSNR on scenes, real synthesis (sim/explore/synth.h), latency.
-// Points are independent jobs (`plan` writes one command line each; `merge` collects them), and
-// a greedy search finds the narrowest configuration within an error budget. docs/exploration.md.
+// Points are independent jobs (`plan` writes one command line each; `merge` collects them).
+// The minimum-width search is sim/explore/search.h. docs/exploration.md.
 #pragma once
 
 #include <cmath>
@@ -97,41 +97,5 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const std::filesyste
 std::vector<PointResult> run_sweep(const SweepSpec& spec, const std::filesystem::path& out,
                                    const std::function<void(std::size_t, std::size_t)>& progress,
                                    std::FILE* log);
-
-// ---- Minimum-width search ----
-
-struct SearchSpec {
-  std::filesystem::path file;
-  std::string name;
-  std::filesystem::path base;
-  std::vector<std::string> signals;  // [format] keys whose fraction bits the search reduces
-  int min_frac = 1;
-  // Budgets (at least one): model_error().max_lsb <= max_lsb, and colour correctness against
-  // float Phong >= min_colour_correctness on `scene` rendered by `method` (a unit method of the
-  // base's pipeline) through the candidate, model backend, at `scene_size`.
-  double max_lsb = INFINITY;
-  double min_colour_correctness = 0;
-  std::string scene, method;
-  int scene_size = 32;
-  std::uint64_t samples = 20000;
-  std::uint64_t seed = 1;
-  std::uint64_t verify_vectors = 1000000;  // co-simulation of the result
-};
-[[nodiscard]] SearchSpec load_search(const std::filesystem::path& file);
-
-struct SearchResult {
-  std::string toml;  // the found configuration
-  ModelError error;
-  double colour_correctness = NAN;                           // with a colour-correctness budget
-  std::vector<std::pair<std::string, std::string>> formats;  // signal -> found format
-  int bits_saved = 0;                                        // fraction bits removed in total
-  std::size_t evaluations = 0;
-};
-
-// Greedy coordinate descent: for each signal in turn, remove fraction bits one at a time while
-// the budget holds; repeat the pass until no signal can lose a bit. Throws Error when the base
-// itself misses the budget.
-[[nodiscard]] SearchResult search_min_width(const SearchSpec& spec,
-                                            const std::function<void(std::string_view)>& note);
 
 }  // namespace phongsim
