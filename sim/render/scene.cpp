@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "base/file_util.h"
+#include "sim/render/teapot.h"
 
 namespace phongsim {
 namespace fs = std::filesystem;
