@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "app/commands.h"
+#include "app/json.h"
 #include "base/error.h"
 #include "sim/cosim/bench.h"
 #include "sim/render/render.h"
@@ -15,9 +16,10 @@ namespace {
 
 // `phongsim bench render`: lyon-k2 on shinyballs through each backend, object pixels per second
 // (two lights: two unit transactions per pixel) and the ratios.
-int bench_render(int radius) {
+int bench_render(int radius, JsonOutput& json) {
   RenderOptions o;
-  o.size = radius;
+  o.size = static_cast<int>(quick_cap(static_cast<std::uint64_t>(radius), 16));
+  radius = o.size;
   o.methods = {"lyon-k2"};
   double rate[3] = {};
   const Backend backends[] = {Backend::float_ref, Backend::model, Backend::rtl};
@@ -26,7 +28,7 @@ int bench_render(int radius) {
   int width = 0, height = 0;
   for (int i = 0; i < 3; ++i) {
     o.backend = backends[i];
-    const RenderResult r = render(o, [](std::string_view, auto, auto) {});
+    const RenderResult r = render(o, progress_line());
     const MethodResult& m = r.results.front();
     pixels = m.metrics.pixels;
     width = m.image.width();
@@ -34,11 +36,23 @@ int bench_render(int radius) {
     rate[i] = static_cast<double>(pixels) / m.seconds;
     table += fmt::format("  {:<22} {:>12.0f}\n", backend_name(backends[i]), rate[i]);
   }
-  fmt::print(
-      "bench render: shinyballs radius {} ({} x {} pixels, {} on the spheres), lyon-k2\n"
-      "  {:<22} {:>12}\n{}  {:<22} {:>11.2f}x\n  {:<22} {:>11.2f}x\n",
-      radius, width, height, pixels, "object pixels/s", "", table, "rtl / model", rate[2] / rate[1],
-      "model / float", rate[1] / rate[0]);
+  fmt::print(json.text(),
+             "bench render: shinyballs radius {} ({} x {} pixels, {} on the spheres), lyon-k2\n"
+             "  {:<22} {:>12}\n{}  {:<22} {:>11.2f}x\n  {:<22} {:>11.2f}x\n",
+             radius, width, height, pixels, "object pixels/s", "", table, "rtl / model",
+             rate[2] / rate[1], "model / float", rate[1] / rate[0]);
+  nlohmann::ordered_json j = json_document("bench");
+  j["kind"] = "render";
+  j["scene"] = "shinyballs";
+  j["size"] = radius;
+  j["width"] = width;
+  j["height"] = height;
+  j["object_pixels"] = pixels;
+  j["method"] = "lyon-k2";
+  j["object_pixels_per_s"] = {{"float", json_number(rate[0])},
+                              {"model", json_number(rate[1])},
+                              {"rtl", json_number(rate[2])}};
+  json.write(j);
   return 0;
 }
 
@@ -53,10 +67,7 @@ struct MethodsBench {
   int teapot_resolution = 0;
 };
 
-int bench_methods(const MethodsBench& b) {
-  if (b.rounds < 1 || b.rounds > 1000) {
-    throw Error(fmt::format("--rounds {} is out of range (1..1000)", b.rounds));
-  }
+int bench_methods(const MethodsBench& b, JsonOutput& json) {
   RenderOptions o;
   o.scene = b.scene;
   o.methods = b.methods;
@@ -67,10 +78,12 @@ int bench_methods(const MethodsBench& b) {
     }
   }
   o.backend = Backend::float_ref;
-  o.repeats = b.rounds;
+  o.repeats = static_cast<int>(quick_cap(static_cast<std::uint64_t>(b.rounds), 1));
   o.size = b.size;
+  if (quick_mode()) o.size = o.size == 0 ? 96 : std::min(o.size, 96);
   o.teapot_resolution = b.teapot_resolution;
-  const RenderResult r = render(o, [](std::string_view, auto, auto) {});
+  if (quick_mode()) o.teapot_resolution = 3;
+  const RenderResult r = render(o, progress_line());
   const auto cpu_of = [&](std::string_view name) {
     for (const MethodResult& m : r.results) {
       if (m.method == name) return m.cpu_seconds;
@@ -83,36 +96,93 @@ int bench_methods(const MethodsBench& b) {
         "bench methods: the Gouraud or Phong pass took no measurable CPU time "
         "(use a larger --size)");
   }
-  fmt::print(
-      "bench methods: {} ({} x {} pixels, {} object pixels), float, CPU time of the shading "
-      "pass, median of {} rounds\n\n"
-      "| method | CPU time (s) | Gouraud ratio | Phong ratio |\n|---|---|---|---|\n",
-      r.scene, r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
-      b.rounds);
+  std::FILE* const out = json.text();
+  fmt::print(out,
+             "bench methods: {} ({} x {} pixels, {} object pixels), float, CPU time of the "
+             "shading pass, median of {} rounds\n\n"
+             "| method | CPU time (s) | Gouraud ratio | Phong ratio |\n|---|---|---|---|\n",
+             r.scene, r.reference.image.width(), r.reference.image.height(),
+             r.reference.metrics.pixels, o.repeats);
+  nlohmann::ordered_json j = json_document("bench");
+  j["kind"] = "methods";
+  j["scene"] = r.scene;
+  j["width"] = r.reference.image.width();
+  j["height"] = r.reference.image.height();
+  j["object_pixels"] = r.reference.metrics.pixels;
+  j["rounds"] = o.repeats;
+  j["methods"] = nlohmann::ordered_json::array();
   for (const MethodResult& m : r.results) {
-    fmt::print("| {} | {:.4f} | {:.4f} | {:.4f} |\n", m.method, m.cpu_seconds,
+    fmt::print(out, "| {} | {:.4f} | {:.4f} | {:.4f} |\n", m.method, m.cpu_seconds,
                m.cpu_seconds / gouraud, m.cpu_seconds / phong);
+    j["methods"].push_back({{"method", m.method},
+                            {"cpu_seconds", m.cpu_seconds},
+                            {"gouraud_ratio", m.cpu_seconds / gouraud},
+                            {"phong_ratio", m.cpu_seconds / phong}});
   }
+  json.write(j);
   return 0;
 }
 
 struct BenchCli {
   Target target;
   std::uint64_t vectors = 200000;
-  int radius = 85;
+  int size = 0;  // --size (alias --radius): as render --size; bench render's default 85
   MethodsBench methods;
+  std::string json;
+  CLI::Option* vectors_opt = nullptr;
+  CLI::Option* size_opt = nullptr;
+  CLI::Option* scene_opt = nullptr;
+  CLI::Option* method_opt = nullptr;
+  CLI::Option* rounds_opt = nullptr;
+  CLI::Option* resolution_opt = nullptr;
 };
 
-int run(const BenchCli& c) {
+nlohmann::ordered_json rate_json(const BenchRate& r) {
+  return {{"vectors_per_s", json_number(r.vectors_per_s)},
+          {"outputs_per_s", json_number(r.outputs_per_s)}};
+}
+
+int run(BenchCli c) {
   const Target& t = c.target;
-  if (t.pipeline == "render" && t.config.empty()) return bench_render(c.radius);
-  if (t.pipeline == "methods" && t.config.empty()) return bench_methods(c.methods);
-  if (c.vectors == 0) throw Error("--vectors 0: nothing to time");
+  const bool render_bench = t.pipeline == "render" && t.config.empty();
+  const bool methods_bench = t.pipeline == "methods" && t.config.empty();
+  // Options of another kind of benchmark are mistakes, not silently ignored.
+  const auto refuse = [](CLI::Option* o, std::string_view where) {
+    if (o != nullptr && *o) {
+      throw Error(fmt::format("{} is for {}", o->get_name(), where));
+    }
+  };
+  if (!methods_bench) {
+    for (CLI::Option* o : {c.scene_opt, c.method_opt, c.rounds_opt, c.resolution_opt}) {
+      refuse(o, "bench methods");
+    }
+  }
+  if (render_bench || methods_bench) refuse(c.vectors_opt, "benchmarks of a pipeline");
+  if (!render_bench && !methods_bench) refuse(c.size_opt, "bench render and bench methods");
+  check_distinct({{"--json", c.json}, {"--config", t.config}});
+  JsonOutput json(c.json);
+  if (render_bench) return bench_render(*c.size_opt ? c.size : 85, json);
+  if (methods_bench) {
+    c.methods.size = c.size;
+    return bench_methods(c.methods, json);
+  }
   const Loaded l = load(t);
   const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
-  const BenchReport r = bench(subject_of(l, t, stimulus), c.vectors);
-  fmt::print("bench {}/{}: {} random vectors each\n{}", l.pipeline->name, l.cfg.name(), c.vectors,
-             r.table());
+  const std::uint64_t vectors = quick_cap(c.vectors, kQuickVectors);
+  const BenchReport r = bench(subject_of(l, t, stimulus), vectors);
+  fmt::print(json.text(), "bench {}/{}: {} random vectors each\n{}", l.pipeline->name, l.cfg.name(),
+             vectors, r.table());
+  nlohmann::ordered_json j = json_document("bench");
+  j["kind"] = "pipeline";
+  j["pipeline"] = l.pipeline->name;
+  j["config"] = l.cfg.name();
+  j["config_path"] = l.cfg.origin();
+  j["vectors"] = vectors;
+  j["model"] = rate_json(r.model);
+  j["rtl"] = rate_json(r.rtl);
+  j["rtl"]["cycles_per_s"] = json_number(r.rtl_cycles_per_s);
+  j["cosim"] = rate_json(r.cosim);
+  json.write(j);
   return 0;
 }
 
@@ -125,25 +195,28 @@ void add_bench(CLI::App& app, Action& action) {
                                  "pipeline); render: pixels per second per backend; methods: CPU "
                                  "time per shading method");
   c->target.add_options(*cmd);
-  add_count(*cmd, "--vectors", c->vectors, "vectors per measurement", kMaxVectors);
-  cmd->add_option("--radius", c->radius,
-                  "bench render: shinyballs sphere radius (85: a 511-pixel-wide strip)")
-      ->check(CLI::Range(1, 4096))
-      ->capture_default_str();
-  cmd->add_option("--scene", c->methods.scene,
-                  "bench methods: the scene (as phongsim render --scene)")
-      ->capture_default_str();
-  cmd->add_option("--method", c->methods.methods,
-                  "bench methods: the methods (gouraud and phong are added if missing)")
-      ->delimiter(',')
-      ->capture_default_str();
-  cmd->add_option("--rounds", c->methods.rounds,
-                  "bench methods: interleaved rounds (the median is printed)")
-      ->capture_default_str();
-  cmd->add_option("--size", c->methods.size,
-                  "bench methods: image width (as phongsim render --size)");
-  cmd->add_option("--teapot-resolution", c->methods.teapot_resolution,
-                  "bench methods: as phongsim render --teapot-resolution");
+  c->vectors_opt = add_count(*cmd, "--vectors", c->vectors,
+                             "a pipeline's benchmark: vectors per measurement (held in memory)",
+                             kMaxBenchVectors, 1);
+  c->size_opt = add_int(*cmd, "--size,--radius", c->size,
+                        "bench render and bench methods: as phongsim render --size — shinyballs' "
+                        "sphere radius (bench render: 85, a 511-pixel-wide strip), a mesh "
+                        "scene's image width (--radius: the same, its older name)",
+                        1, 2048);
+  c->scene_opt = cmd->add_option("--scene", c->methods.scene,
+                                 "bench methods: the scene (as phongsim render --scene)")
+                     ->capture_default_str();
+  c->method_opt = cmd->add_option("--method", c->methods.methods,
+                                  "bench methods: the methods (gouraud and phong are added if "
+                                  "missing)")
+                      ->delimiter(',')
+                      ->capture_default_str();
+  c->rounds_opt = add_int(*cmd, "--rounds", c->methods.rounds,
+                          "bench methods: interleaved rounds (the median is printed)", 1, 1000)
+                      ->capture_default_str();
+  c->resolution_opt = add_int(*cmd, "--teapot-resolution", c->methods.teapot_resolution,
+                              "bench methods: as phongsim render --teapot-resolution", 1, 256);
+  cmd->add_option("--json", c->json, "write the results as JSON (docs/json.md; - is stdout)");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });
 }
 

@@ -20,6 +20,10 @@ std::string value_text(const Field& f, std::int64_t raw) {
 
 std::string field_head(const Field& f) { return fmt::format("{:<8} {:>7}", f.name, f.fmt.str()); }
 
+FieldValue field_value(const Field& f, std::int64_t raw) {
+  return {f.name, f.fmt.str(), raw, fx::to_real(raw, f.fmt)};
+}
+
 // Output fields as a table with expected and got side by side, differing fields marked.
 std::string output_table(const std::vector<Field>& fields, const std::int64_t* want,
                          std::span<const std::int64_t> got) {
@@ -61,14 +65,19 @@ class Scoreboard {
     drop_finished();
   }
 
-  // Compares one RTL output; on a failure fills kind/report and returns false.
+  // Compares one RTL output; on a failure fills kind/report/detail and returns false.
   bool check(std::span<const std::int64_t> got, std::uint64_t cycle, std::string& kind,
-             std::string& report) {
+             std::string& report, CosimFailure& detail) {
     const auto& outs = model_.outputs();
     const std::size_t n = outs.size();
     drop_finished();
     if (queue_.empty()) {
       kind = "unexpected output";
+      detail.cycle = cycle;
+      for (std::size_t i = 0; i < n; ++i) {
+        detail.outputs.push_back(
+            {outs[i].name, outs[i].fmt.str(), std::nullopt, field_value(outs[i], got[i]), true});
+      }
       report = fmt::format(
           "UNEXPECTED OUTPUT at cycle {}: the model expects no output now (all {} checked "
           "outputs matched); duplicated or extra output\n  got:\n",
@@ -94,6 +103,17 @@ class Scoreboard {
       }
       report += output_table(outs, want, got);
       failing_index_ = t.index;
+      detail.cycle = cycle;
+      detail.vector = t.index;
+      detail.output = t.seen;
+      detail.outputs_of_vector = t.count;
+      for (std::size_t i = 0; i < ins.size(); ++i) {
+        detail.inputs.push_back(field_value(ins[i], t.in[i]));
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        detail.outputs.push_back({outs[i].name, outs[i].fmt.str(), field_value(outs[i], want[i]),
+                                  field_value(outs[i], got[i]), want[i] != got[i]});
+      }
       return false;
     }
     if (t.seen == 0) {
@@ -171,6 +191,7 @@ struct Phase {
   HarnessResult harness;
   std::string kind;
   std::string report;
+  CosimFailure detail;
   std::uint64_t latency_min = 0;
   std::uint64_t latency_max = 0;
   std::optional<std::uint64_t> failing_index;
@@ -178,7 +199,8 @@ struct Phase {
 
 // Runs vectors [first, first + count) (or the one in `only`) through a fresh DUT.
 Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, const CosimOptions& o,
-                const HarnessOptions& ho, std::uint64_t first, std::uint64_t count) {
+                const HarnessOptions& ho, std::uint64_t first, std::uint64_t count,
+                const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) {
   Phase phase;
   model.reset();
   Scoreboard board(model);
@@ -192,9 +214,10 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, con
   };
   hooks.accepted = [&](std::uint64_t pos, std::uint64_t cycle) {
     board.accept(first + pos, cycle, current);
+    if (progress && pos % 4096 == 0) progress(pos, count);
   };
   hooks.output = [&](std::span<const std::int64_t> out, std::uint64_t cycle) {
-    return board.check(out, cycle, phase.kind, phase.report);
+    return board.check(out, cycle, phase.kind, phase.report, phase.detail);
   };
   hooks.finished = [&](std::uint64_t) { return board.drained(); };
   phase.harness = run_harness(dut, model.inputs().size(), model.outputs().size(), ho, hooks);
@@ -206,12 +229,19 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, con
       phase.report +=
           fmt::format("  waiting for in_ready: vector {}\n", first + *phase.harness.waiting_input);
     }
+    phase.detail.vector = board.next_due();
   } else if (phase.harness.reason == StopReason::protocol) {
     phase.kind = "protocol";
     phase.report = fmt::format("HANDSHAKE VIOLATION: {}\n", phase.harness.message);
     if (const auto due = board.next_due()) {
       phase.report += fmt::format("  the offending output is the one due for vector {}\n", *due);
     }
+    phase.detail.vector = board.next_due();
+  }
+  if (!phase.kind.empty()) {
+    phase.detail.kind = phase.kind;
+    phase.detail.message = phase.harness.message;
+    if (phase.detail.cycle == 0) phase.detail.cycle = phase.harness.cycles - 1;
   }
   phase.latency_min = board.latency_min();
   phase.latency_max = board.latency_max();
@@ -309,7 +339,7 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   Phase main;
   {
     DutPtr dut = make_dut();
-    main = run_phase(model, *dut, stimulus, options, ho, first, count);
+    main = run_phase(model, *dut, stimulus, options, ho, first, count, options.progress);
   }
   r.vectors = main.harness.inputs;
   r.outputs = main.harness.outputs - (rejects_an_output(main.kind) ? 1 : 0);
@@ -321,6 +351,7 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
     const std::uint64_t fail_cycle = main.harness.cycles - 1;
     r.failure = main.report + failure_context(r, options.only_index, main.failing_index,
                                               subject.independent_vectors);
+    r.failure_detail = main.detail;
     if (!options.trace_path.empty()) {  // same run again, waveform only around the failure
       ho.trace_from = fail_cycle > options.trace_window ? fail_cycle - options.trace_window : 0;
       ho.trace_to = fail_cycle + 1;
@@ -352,7 +383,10 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
       r.failure =
           m.report + "  (in the stall-free measurement run)\n" +
           failure_context(as_run, std::nullopt, m.failing_index, subject.independent_vectors);
+      r.failure_detail = m.detail;
+      r.failure_detail->in_measurement_run = true;
     } else if (m.harness.outputs > 1) {
+      r.measured = true;
       r.throughput =
           static_cast<double>(m.harness.outputs - 1) /
           static_cast<double>(m.harness.last_output_cycle - m.harness.first_output_cycle);

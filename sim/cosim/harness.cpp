@@ -119,14 +119,25 @@ HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t 
                              std::span<const std::int64_t> vectors,
                              const std::function<void(std::span<const std::int64_t>)>& on_output) {
   const std::size_t count = vectors.size() / input_fields;
+  std::size_t i = 0;
+  return stream_vectors(
+      dut, input_fields, output_fields,
+      [&](std::span<std::int64_t> v) {
+        if (i >= count) return false;
+        const auto src = vectors.subspan(i * input_fields, input_fields);
+        std::copy(src.begin(), src.end(), v.begin());
+        ++i;
+        return true;
+      },
+      on_output);
+}
+
+HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
+                             const std::function<bool(std::span<std::int64_t>)>& next,
+                             const std::function<void(std::span<const std::int64_t>)>& on_output) {
   std::uint64_t last_activity = 0;
   HarnessHooks hooks;
-  hooks.next_input = [&](std::uint64_t i, std::span<std::int64_t> v) {
-    if (i >= count) return false;
-    const auto src = vectors.subspan(i * input_fields, input_fields);
-    std::copy(src.begin(), src.end(), v.begin());
-    return true;
-  };
+  hooks.next_input = [&](std::uint64_t, std::span<std::int64_t> v) { return next(v); };
   hooks.accepted = [&](std::uint64_t, std::uint64_t cycle) { last_activity = cycle; };
   hooks.output = [&](std::span<const std::int64_t> o, std::uint64_t cycle) {
     on_output(o);

@@ -1,7 +1,6 @@
 #include "sim/explore/search.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <toml++/toml.h>
 
@@ -11,6 +10,7 @@
 #include <optional>
 
 #include "base/error.h"
+#include "base/temporaries.h"
 #include "sim/explore/spec_file.h"
 #include "sim/pipelines/registry.h"
 #include "sim/render/render.h"
@@ -36,7 +36,8 @@ SearchSpec load_search(const fs::path& file) {
         if (!x.is_string()) fail_at(file, x, "signals: expected [format] key names");
         s.signals.push_back(*x.value<std::string>());
       }
-    } else if (key == "min_frac" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
+    } else if (key == "min_frac" && v.is_integer() && *v.value<std::int64_t>() >= 0 &&
+               *v.value<std::int64_t>() <= 62) {
       s.min_frac = static_cast<int>(*v.value<std::int64_t>());
     } else if (key == "max_lsb" && (v.is_floating_point() || v.is_integer()) &&
                *v.value<double>() > 0) {
@@ -52,14 +53,24 @@ SearchSpec load_search(const fs::path& file) {
                *v.value<std::int64_t>() <= 2048) {
       s.scene_size = static_cast<int>(*v.value<std::int64_t>());
     } else if (key == "samples" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
+      if (static_cast<std::uint64_t>(*v.value<std::int64_t>()) > kMaxSearchSamples) {
+        fail_at(
+            file, v,
+            fmt::format("samples = {}: at most {}", *v.value<std::int64_t>(), kMaxSearchSamples));
+      }
       s.samples = static_cast<std::uint64_t>(*v.value<std::int64_t>());
     } else if (key == "seed" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
       s.seed = static_cast<std::uint64_t>(*v.value<std::int64_t>());
     } else if (key == "verify_vectors" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
+      if (static_cast<std::uint64_t>(*v.value<std::int64_t>()) > kMaxVerifyVectors) {
+        fail_at(file, v,
+                fmt::format("verify_vectors = {}: at most {}", *v.value<std::int64_t>(),
+                            kMaxVerifyVectors));
+      }
       s.verify_vectors = static_cast<std::uint64_t>(*v.value<std::int64_t>());
     } else {
       fail_at(file, v,
-              fmt::format("unexpected '{}' (expected name, base, signals, min_frac, "
+              fmt::format("unexpected '{}' (expected name, base, signals, min_frac 0..62, "
                           "max_lsb > 0, min_colour_correctness in (0, 1], scene, method, "
                           "scene_size, samples, seed, verify_vectors)",
                           key));
@@ -81,6 +92,10 @@ SearchSpec load_search(const fs::path& file) {
     }
   }
   if (s.signals.empty()) throw Error(fmt::format("{}: no signals to narrow", file.string()));
+  if (s.signals.size() > kMaxSearchSignals) {
+    throw Error(fmt::format("{}: {} signals, at most {}", file.string(), s.signals.size(),
+                            kMaxSearchSignals));
+  }
   const toml::table base = parse_toml(s.base);
   for (const auto& sig : s.signals) {
     if (!base["format"][sig].is_string()) {
@@ -92,7 +107,8 @@ SearchSpec load_search(const fs::path& file) {
 }
 
 SearchResult search_min_width(const SearchSpec& spec,
-                              const std::function<void(std::string_view)>& note) {
+                              const std::function<void(std::string_view)>& note,
+                              const std::function<void(std::size_t)>& progress) {
   const toml::table base = parse_toml(spec.base);
   std::map<std::string, fx::Format> formats;
   for (const auto& sig : spec.signals)
@@ -105,13 +121,8 @@ SearchResult search_min_width(const SearchSpec& spec,
     return values;
   };
   // Candidates are files (the renderer loads them): in a directory of their own.
-  const fs::path dir =
-      fs::temp_directory_path() / fmt::format("phongsim-search-{}-{}", spec.name, getpid());
-  fs::create_directories(dir);
-  const std::shared_ptr<void> cleanup(nullptr, [dir](void*) {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  });
+  const TempDir scratch("search");
+  const fs::path dir = scratch.path();
   struct Evaluation {
     ModelError error;
     double cc = NAN;
@@ -125,6 +136,7 @@ SearchResult search_min_width(const SearchSpec& spec,
   const auto try_formats =
       [&](const std::map<std::string, fx::Format>& f) -> std::optional<Evaluation> {
     ++result.evaluations;
+    if (progress) progress(result.evaluations);
     try {
       const fs::path file = dir / (spec.name + ".toml");
       write_text(file, point_toml(spec.base, candidate(f), "", ""));

@@ -17,6 +17,11 @@
 
 namespace phongsim {
 
+// Bounds checked when a search file is read (one line with the number and the limit).
+inline constexpr std::uint64_t kMaxSearchSamples = 10'000'000;
+inline constexpr std::uint64_t kMaxVerifyVectors = 1'000'000'000;
+inline constexpr std::size_t kMaxSearchSignals = 32;
+
 struct SearchSpec {
   std::filesystem::path file;
   std::string name;
@@ -48,7 +53,9 @@ struct SearchResult {
 // Greedy coordinate descent: for each signal in turn, remove fraction bits one at a time while
 // the budget holds; repeat the pass until no signal can lose a bit. Throws Error when the base
 // itself misses the budget.
+// `note` gets each accepted step, `progress` (may be empty) the number of evaluations so far.
 [[nodiscard]] SearchResult search_min_width(const SearchSpec& spec,
-                                            const std::function<void(std::string_view)>& note);
+                                            const std::function<void(std::string_view)>& note,
+                                            const std::function<void(std::size_t)>& progress = {});
 
 }  // namespace phongsim

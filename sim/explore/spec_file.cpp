@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "base/error.h"
+#include "base/file_util.h"
 #include "base/output_file.h"
 #include "base/paths.h"
 #include "sim/render/render.h"
@@ -17,8 +18,9 @@ void fail_at(const fs::path& file, const toml::node& n, const std::string& what)
 }
 
 toml::table parse_toml(const fs::path& file) {
+  const std::string text = read_file(file, "file");
   try {
-    return toml::parse_file(file.string());
+    return toml::parse(text, file.string());
   } catch (const toml::parse_error& e) {
     throw Error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
   }

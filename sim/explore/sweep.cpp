@@ -94,6 +94,11 @@ SweepSpec load_sweep(const fs::path& file) {
                             axis.key));
       }
       if (const auto* arr = v.as_array()) {
+        if (arr->size() > kMaxAxisValues) {
+          fail_at(file, v,
+                  fmt::format("axis '{}' has {} values, at most {}", axis.key, arr->size(),
+                              kMaxAxisValues));
+        }
         for (const auto& x : *arr) {
           const std::string lit = literal(x);
           if (lit.empty())
@@ -110,6 +115,10 @@ SweepSpec load_sweep(const fs::path& file) {
         }
         const auto lo = (*fr)[0].value<std::int64_t>().value();
         const auto hi = (*fr)[1].value<std::int64_t>().value();
+        if (lo < 0 || hi > 62) {
+          fail_at(file, v,
+                  fmt::format("axis '{}': fraction bits {}..{} outside 0..62", axis.key, lo, hi));
+        }
         const toml::table base = parse_toml(s.bases.front());
         const auto fmt_text = base["format"][axis.key.substr(dot + 1)].value<std::string>();
         if (!fmt_text) {
@@ -126,10 +135,26 @@ SweepSpec load_sweep(const fs::path& file) {
       s.axes.push_back(std::move(axis));
     }
   }
+  std::size_t points = s.bases.size();  // the grid, checked without overflowing
+  for (const SweepAxis& a : s.axes) {
+    if (points > kMaxSweepPoints) break;
+    points *= a.values.size();
+  }
+  if (points > kMaxSweepPoints) {
+    std::string sizes = fmt::format("{} base{}", s.bases.size(), s.bases.size() == 1 ? "" : "s");
+    for (const SweepAxis& a : s.axes) sizes += fmt::format(" x {}", a.values.size());
+    throw Error(fmt::format(
+        "{}: the grid has {} points ({}), at most {}", file.string(),
+        points > kMaxSweepPoints * 1000 ? std::string("too many") : std::to_string(points), sizes,
+        kMaxSweepPoints));
+  }
   if (const auto* e = t["error"].as_table()) {
     for (const auto& [k, v] : *e) {
       const auto n = v.value<std::int64_t>();
       if (k.str() == "samples" && n && *n >= 1) {
+        if (static_cast<std::uint64_t>(*n) > kMaxSweepSamples) {
+          fail_at(file, v, fmt::format("[error] samples = {}: at most {}", *n, kMaxSweepSamples));
+        }
         s.samples = static_cast<std::uint64_t>(*n);
       } else if (k.str() == "seed" && n && *n >= 0) {
         s.seed = static_cast<std::uint64_t>(*n);
@@ -242,6 +267,7 @@ PointResult evaluate_point(const SweepSpec& spec, const fs::path& config, std::s
   PointResult r;
   r.index = index;
   r.config = config.string();
+  r.config_hash = content_hash(read_file(config, "point configuration"));
   const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
   (void)make_model(pipeline, cfg);  // refuses a configuration the pipeline cannot take
   r.error = pipeline.float_error(cfg, spec.samples, spec.seed);
@@ -270,33 +296,44 @@ nlohmann::json to_json(const PointResult& r) {
   nlohmann::json psnr = nlohmann::json::object();
   for (const auto& [k, v] : r.psnr)
     psnr[k] = std::isinf(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
-  return {{"index", r.index},
-          {"config", r.config},
-          {"error",
-           {{"max_lsb", r.error.max_lsb},
-            {"mean_lsb", r.error.mean_lsb},
-            {"max_abs", r.error.max_abs},
-            {"samples", r.error.samples}}},
-          {"colour_correctness", cc},
-          {"psnr", psnr},
-          {"synth", r.synthesized ? nlohmann::json{{"cells", r.synth.cells},
-                                                   {"transistors", r.synth.transistors},
-                                                   {"lut4", r.synth.lut4},
-                                                   {"carry", r.synth.carry},
-                                                   {"mac16", r.synth.mac16},
-                                                   {"ff", r.synth.ff},
-                                                   {"fits", r.synth.fits},
-                                                   {"fmax_mhz", r.synth.fmax_mhz},
-                                                   {"cached", r.synth.cached}}
-                                  : nlohmann::json(nullptr)},
-          {"latency", r.latency},
-          {"seconds", r.seconds}};
+  const auto count = [](std::int64_t n) {
+    return n >= 0 ? nlohmann::json(n) : nlohmann::json(nullptr);
+  };
+  const bool ice40 = r.synth.lut4 >= 0;
+  return {
+      {"index", r.index},
+      {"config", r.config},
+      {"config_hash", r.config_hash},
+      {"error",
+       {{"max_lsb", r.error.max_lsb},
+        {"mean_lsb", r.error.mean_lsb},
+        {"max_abs", r.error.max_abs},
+        {"samples", r.error.samples}}},
+      {"colour_correctness", cc},
+      {"psnr", psnr},
+      // What was not computed (generic or iCE40 synthesis) is null.
+      {"synth", r.synthesized ? nlohmann::json{{"cells", count(r.synth.cells)},
+                                               {"transistors", count(r.synth.transistors)},
+                                               {"lut4", count(r.synth.lut4)},
+                                               {"carry", count(r.synth.carry)},
+                                               {"mac16", count(r.synth.mac16)},
+                                               {"ff", count(r.synth.ff)},
+                                               {"fits", ice40 ? nlohmann::json(r.synth.fits)
+                                                              : nlohmann::json(nullptr)},
+                                               {"fmax_mhz", ice40 && r.synth.fits
+                                                                ? nlohmann::json(r.synth.fmax_mhz)
+                                                                : nlohmann::json(nullptr)},
+                                               {"cached", r.synth.cached}}
+                              : nlohmann::json(nullptr)},
+      {"latency", r.latency},
+      {"seconds", r.seconds}};
 }
 
 PointResult from_json(const nlohmann::json& j) {
   PointResult r;
   r.index = j.at("index").get<std::size_t>();
   r.config = j.at("config").get<std::string>();
+  r.config_hash = j.value("config_hash", std::string());
   r.error.max_lsb = j.at("error").at("max_lsb").get<double>();
   r.error.mean_lsb = j.at("error").at("mean_lsb").get<double>();
   r.error.max_abs = j.at("error").at("max_abs").get<double>();
@@ -308,15 +345,19 @@ PointResult from_json(const nlohmann::json& j) {
   }
   if (!j.at("synth").is_null()) {
     const auto& s = j.at("synth");
+    const auto count = [&](const char* key) {
+      return s.at(key).is_null() ? std::int64_t{-1} : s.at(key).get<std::int64_t>();
+    };
     r.synthesized = true;
-    r.synth.cells = s.at("cells").get<std::int64_t>();
-    r.synth.transistors = s.at("transistors").get<std::int64_t>();
-    r.synth.lut4 = s.at("lut4").get<std::int64_t>();
-    r.synth.carry = s.at("carry").get<std::int64_t>();
-    r.synth.mac16 = s.at("mac16").get<std::int64_t>();
-    r.synth.ff = s.at("ff").get<std::int64_t>();
-    r.synth.fits = s.at("fits").get<bool>();
-    r.synth.fmax_mhz = s.at("fmax_mhz").get<double>();
+    r.synth.cells = count("cells");
+    r.synth.transistors = count("transistors");
+    r.synth.lut4 = count("lut4");
+    r.synth.carry = count("carry");
+    r.synth.mac16 = count("mac16");
+    r.synth.ff = count("ff");
+    r.synth.fits = s.at("fits").is_null() || s.at("fits").get<bool>();
+    r.synth.fmax_mhz =
+        s.at("fmax_mhz").is_null() ? (r.synth.fits ? -1.0 : 0.0) : s.at("fmax_mhz").get<double>();
     r.synth.cached = s.at("cached").get<bool>();
   }
   r.latency = j.at("latency").get<int>();
@@ -324,52 +365,78 @@ PointResult from_json(const nlohmann::json& j) {
   return r;
 }
 
-fs::path point_path(const fs::path& out, std::size_t i) {
-  return out / "points" / fmt::format("{:04}.toml", i);
-}
-fs::path result_path(const fs::path& out, std::size_t i) {
-  return out / "results" / fmt::format("{:04}.json", i);
-}
+fs::path point_file(std::size_t i) { return fs::path("points") / fmt::format("{:04}.toml", i); }
+fs::path result_file(std::size_t i) { return fs::path("results") / fmt::format("{:04}.json", i); }
 
 double area_of(const SweepSpec& spec, const PointResult& r) {
   if (!r.synthesized) return NAN;
-  if (spec.area == "transistors") return static_cast<double>(r.synth.transistors);
-  if (spec.area == "lut4") return static_cast<double>(r.synth.lut4);
-  return static_cast<double>(r.synth.cells);
+  const std::int64_t a = spec.area == "transistors" ? r.synth.transistors
+                         : spec.area == "lut4"      ? r.synth.lut4
+                                                    : r.synth.cells;
+  return a < 0 ? NAN : static_cast<double>(a);
+}
+
+// "lirp/default": the base's folder (the pipeline's, for configs/) and name.
+std::string base_name(const fs::path& base) {
+  return base.parent_path().filename().string() + "/" + base.stem().string();
 }
 
 }  // namespace
 
+std::string content_hash(const std::string& text) {
+  ContentHash h;
+  h.add(text);
+  return h.hex();
+}
+
+std::string point_result_json(const PointResult& r) { return to_json(r).dump(2) + "\n"; }
+
 void write_point_result(const PointResult& r, const fs::path& path) {
-  write_text(path, to_json(r).dump(2) + "\n");
+  write_text(path, point_result_json(r));
 }
 
 std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const fs::path& out) {
   const std::vector<SweepPoint> points = expand(spec);
-  std::error_code ec;
-  fs::create_directories(out / "points", ec);
-  fs::create_directories(out / "results", ec);
-  if (ec) throw Error(fmt::format("cannot create {}: {}", out.string(), ec.message()));
+  // The plan appears whole or not at all; planning again replaces the plan and what was merged
+  // from the old one.
+  OutputSet set(out, "sweep plan", {"sweep plan", "sweep merge"});
   const fs::path exe = fs::canonical("/proc/self/exe");
   const fs::path sweep = fs::absolute(spec.file);
+  const fs::path dir = fs::absolute(out);
   std::string jobs;
   std::string make = "# make -j<N> -f Makefile: every point of the sweep, then merge\nall:";
   std::string rules;
   for (const SweepPoint& p : points) {
-    write_text(point_path(out, p.index), p.toml);
+    std::fputs(p.toml.c_str(), set.add(point_file(p.index)).get());
     const std::string cmd =
         fmt::format("{} sweep point {} --sweep {} --index {} --out {}", exe.string(),
-                    fs::absolute(point_path(out, p.index)).string(), sweep.string(), p.index,
-                    fs::absolute(result_path(out, p.index)).string());
+                    (dir / point_file(p.index)).string(), sweep.string(), p.index,
+                    (dir / result_file(p.index)).string());
     jobs += cmd + "\n";
     make += fmt::format(" results/{:04}.json", p.index);
     rules += fmt::format("results/{:04}.json:\n\t{}\n", p.index, cmd);
   }
   make += fmt::format("\n\t{} sweep merge {} --out {}\n{}", exe.string(), sweep.string(),
-                      fs::absolute(out).string(), rules);
-  write_text(out / "jobs.txt", jobs);
-  write_text(out / "Makefile", make);
+                      dir.string(), rules);
+  std::fputs(jobs.c_str(), set.add("jobs.txt").get());
+  std::fputs(make.c_str(), set.add("Makefile").get());
+  set.commit();
+  std::error_code ec;
+  fs::create_directories(out / "results", ec);
+  if (ec)
+    throw Error(fmt::format("cannot create {}: {}", (out / "results").string(), ec.message()));
   return points;
+}
+
+bool on_pareto_front(const SweepSpec& spec, const PointResult& a,
+                     const std::vector<PointResult>& results) {
+  const double aa = area_of(spec, a);
+  if (std::isnan(aa)) return false;
+  return std::none_of(results.begin(), results.end(), [&](const PointResult& b) {
+    const double ab = area_of(spec, b);
+    return !std::isnan(ab) && ab <= aa && b.error.max_abs <= a.error.max_abs &&
+           (ab < aa || b.error.max_abs < a.error.max_abs);
+  });
 }
 
 std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out) {
@@ -377,14 +444,21 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
   std::vector<PointResult> results;
   for (const SweepPoint& p : points) {
     // The plan in `out` must be this sweep's: same point files, results made from them.
-    const fs::path pp = point_path(out, p.index);
-    if (read_file(pp) != p.toml) {
+    const fs::path pp = out / point_file(p.index);
+    if (!fs::exists(pp)) {
+      throw Error(
+          fmt::format("{} holds no plan of {} ({} is missing): run phongsim sweep plan "
+                      "first",
+                      out.string(), spec.file.string(), pp.string()));
+    }
+    const std::string planned = read_file(pp);
+    if (planned != p.toml) {
       throw Error(
           fmt::format("{} is not point {} of {} ({}): plan the sweep again into an empty "
                       "directory",
                       pp.string(), p.index, spec.file.string(), describe(p.values)));
     }
-    const fs::path rp = result_path(out, p.index);
+    const fs::path rp = out / result_file(p.index);
     if (!fs::exists(rp)) {
       throw Error(fmt::format("point {} ({}) has no result yet: {}", p.index, describe(p.values),
                               rp.string()));
@@ -400,44 +474,51 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
       throw Error(
           fmt::format("{} was computed from {}, not from {}", rp.string(), r.config, pp.string()));
     }
+    if (r.config_hash != content_hash(planned)) {
+      throw Error(
+          fmt::format("{} was computed from another version of {}: run point {} again (its line in "
+                      "jobs.txt)",
+                      rp.string(), pp.string(), p.index));
+    }
     r.values = p.values;
     r.base = p.base.string();
     results.push_back(std::move(r));
   }
-  // CSV.
-  std::string csv = "index,base";
+  const bool synth = spec.synth.generic || spec.synth.ice40;
+  std::vector<bool> pareto;
+  for (const PointResult& r : results) pareto.push_back(on_pareto_front(spec, r, results));
+
+  // CSV: what was not computed is an empty cell.
+  const auto count = [](std::int64_t n) { return n >= 0 ? std::to_string(n) : std::string(); };
+  std::string csv = "index,pipeline,base";
   for (const auto& a : spec.axes) csv += "," + a.key;
   csv += ",max_error_lsb,mean_error_lsb,max_error_abs";
   for (const auto& sc : spec.scenes) csv += fmt::format(",cc_{0},psnr_{0}", sc.scene);
-  csv += ",cells,transistors,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency\n";
-  for (const PointResult& r : results) {
-    csv += fmt::format("{},{}", r.index, fs::path(r.base).filename().string());
+  csv += ",cells,transistors,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency,pareto\n";
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const PointResult& r = results[k];
+    const Config cfg = Config::load(out / point_file(r.index));
+    csv += fmt::format("{},{},{}", r.index, cfg.pipeline(), base_name(r.base));
     for (const auto& v : r.values) csv += fmt::format(",{}", unquote(v.second));
     csv += fmt::format(",{:.6g},{:.6g},{:.6g}", r.error.max_lsb, r.error.mean_lsb, r.error.max_abs);
     for (std::size_t i = 0; i < r.colour_correctness.size(); ++i) {
-      csv += fmt::format(",{:.6f},{:.3f}", r.colour_correctness[i].second, r.psnr[i].second);
+      csv += fmt::format(",{:.6f},{}", r.colour_correctness[i].second,
+                         std::isfinite(r.psnr[i].second) ? fmt::format("{:.3f}", r.psnr[i].second)
+                                                         : std::string("inf"));
     }
-    if (r.synthesized) {
-      csv += fmt::format(",{},{},{},{},{},{},{},{:.2f}", r.synth.cells, r.synth.transistors,
-                         r.synth.lut4, r.synth.carry, r.synth.mac16, r.synth.ff,
-                         r.synth.fits ? 1 : 0, r.synth.fmax_mhz);
-    } else {
-      csv += ",,,,,,,,";
-    }
-    csv += fmt::format(",{}\n", r.latency);
+    const bool generic = r.synthesized && spec.synth.generic;
+    const bool ice40 = r.synthesized && spec.synth.ice40 && r.synth.lut4 >= 0;
+    csv += fmt::format(",{},{}", generic ? count(r.synth.cells) : "",
+                       generic ? count(r.synth.transistors) : "");
+    csv += fmt::format(",{},{},{},{},{},{}", ice40 ? count(r.synth.lut4) : "",
+                       ice40 ? count(r.synth.carry) : "", ice40 ? count(r.synth.mac16) : "",
+                       ice40 ? count(r.synth.ff) : "", ice40 ? (r.synth.fits ? "1" : "0") : "",
+                       ice40 && r.synth.fits ? fmt::format("{:.2f}", r.synth.fmax_mhz) : "");
+    csv += fmt::format(",{},{}\n", r.latency, synth ? (pareto[k] ? "1" : "0") : "");
   }
-  write_text(out / "sweep.csv", csv);
+  OutputSet set(out, "sweep merge", {"sweep merge"});
+  std::fputs(csv.c_str(), set.add("sweep.csv").get());
 
-  // Pareto front: no other point has both less (or equal) area and less (or equal) error.
-  const auto dominated = [&](const PointResult& a) {
-    const double aa = area_of(spec, a);
-    if (std::isnan(aa)) return false;
-    return std::any_of(results.begin(), results.end(), [&](const PointResult& b) {
-      const double ab = area_of(spec, b);
-      return !std::isnan(ab) && ab <= aa && b.error.max_abs <= a.error.max_abs &&
-             (ab < aa || b.error.max_abs < a.error.max_abs);
-    });
-  };
   std::string md =
       fmt::format("# Sweep {}\n\n`{}`: {} points, error over {} samples (seed {})\n\n", spec.name,
                   spec.file.string(), results.size(), spec.samples, spec.seed);
@@ -453,7 +534,6 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     md += fmt::format(" cc {} |", sc.scene);
     rule += "---|";
   }
-  const bool synth = spec.synth.generic || spec.synth.ice40;
   if (spec.synth.generic) {
     md += " cells | transistors |";
     rule += "---|---|";
@@ -469,7 +549,8 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     rule += "---|";
   }
   md += "\n" + rule + "\n";
-  for (const PointResult& r : results) {
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const PointResult& r = results[k];
     md += fmt::format("| {} | {} |", r.index, fs::path(r.base).stem().string());
     for (const auto& v : r.values) md += fmt::format(" {} |", unquote(v.second));
     md += fmt::format(" {:.4g} | {:.4g} |", r.error.max_lsb, r.error.mean_lsb);
@@ -480,51 +561,52 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
                         r.synth.fits ? fmt::format("{:.1f}", r.synth.fmax_mhz) : "does not fit");
     }
     md += fmt::format(" {} |", r.latency);
-    if (synth) md += dominated(r) ? " |" : " yes |";
+    if (synth) md += pareto[k] ? " yes |" : " |";
     md += "\n";
   }
-  write_text(out / "summary.md", md);
+  std::fputs(md.c_str(), set.add("summary.md").get());
 
   if (synth) {
     // pareto.csv (the figure's data) and pareto.png (scripts/plot.py pareto): error against
     // area, one series per variant, the front drawn and its points labelled "#<index> ...".
     const auto axis_name = [](const std::string& key) { return key.substr(key.rfind('.') + 1); };
     std::string data = "series,label,area,max_error,pareto\n";
-    for (const PointResult& r : results) {
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      const PointResult& r = results[k];
       const double area = area_of(spec, r);
       if (!std::isfinite(area)) continue;
-      const fs::path base(r.base);
-      const std::string base_name =
-          base.parent_path().filename().string() + "/" + base.stem().string();
       std::string series = "all points";
       if (spec.variant == "base") {
-        series = base_name;
+        series = base_name(r.base);
       } else if (!spec.variant.empty()) {
         for (const auto& v : r.values) {
           if (v.first == spec.variant) series = axis_name(v.first) + " = " + unquote(v.second);
         }
       }
       std::string label = fmt::format("#{}", r.index);
-      if (spec.bases.size() > 1 && spec.variant != "base") label += " " + base_name;
+      if (spec.bases.size() > 1 && spec.variant != "base") label += " " + base_name(r.base);
       for (const auto& v : r.values)
         label += fmt::format(" {}={}", axis_name(v.first), unquote(v.second));
       // The CSV has no quoting: keep commas out of the names.
       std::replace(series.begin(), series.end(), ',', ';');
       std::replace(label.begin(), label.end(), ',', ';');
-      data += fmt::format("{},{},{},{},{}\n", series, label, area, r.error.max_abs,
-                          dominated(r) ? 0 : 1);
+      data +=
+          fmt::format("{},{},{},{},{}\n", series, label, area, r.error.max_abs, pareto[k] ? 1 : 0);
     }
-    write_text(out / "pareto.csv", data);
+    OutputFile& pareto_csv = set.add("pareto.csv");
+    std::fputs(data.c_str(), pareto_csv.get());
+    std::fflush(pareto_csv.get());
     const std::string area_caption = spec.area == "transistors"
                                          ? "area: transistors (Yosys stat -tech cmos)"
                                      : spec.area == "lut4" ? "area: iCE40 LUT4s (synth_ice40)"
                                                            : "area: cells (Yosys generic synth)";
     plot_figure("pareto",
-                {"--csv", (out / "pareto.csv").string(), "--title",
+                {"--csv", pareto_csv.temp_path().string(), "--title",
                  fmt::format("{}: max error against area", spec.name), "--x-label", area_caption,
                  "--y-label", "max |error| against the float reference (output units)"},
-                out / "pareto.png");
+                set.add("pareto.png"));
   }
+  set.commit();
   return results;
 }
 
@@ -534,8 +616,8 @@ std::vector<PointResult> run_sweep(const SweepSpec& spec, const fs::path& out,
   const std::vector<SweepPoint> points = plan_sweep(spec, out);
   for (const SweepPoint& p : points) {
     progress(p.index, points.size());
-    PointResult r = evaluate_point(spec, point_path(out, p.index), p.index, log);
-    write_point_result(r, result_path(out, p.index));
+    PointResult r = evaluate_point(spec, out / point_file(p.index), p.index, log);
+    write_point_result(r, out / result_file(p.index));
   }
   progress(points.size(), points.size());
   return merge_sweep(spec, out);

@@ -21,6 +21,12 @@
 
 namespace phongsim {
 
+// Bounds checked when a sweep file is read, before any work (one line naming the number and the
+// limit): values per axis, points in the grid, random samples per point.
+inline constexpr std::size_t kMaxAxisValues = 256;
+inline constexpr std::size_t kMaxSweepPoints = 10000;
+inline constexpr std::uint64_t kMaxSweepSamples = 10'000'000;
+
 struct SweepAxis {
   std::string key;                  // "format.vec", "param.k", "mode.round", "setup.policy"
   std::vector<std::string> values;  // TOML literals: "\"S1.8\"", "2"
@@ -63,7 +69,8 @@ struct SweepPoint {
 
 struct PointResult {
   std::size_t index = 0;
-  std::string config;  // the point's configuration file
+  std::string config;       // the point's configuration file
+  std::string config_hash;  // of its content (merge refuses a result of another version)
   std::vector<std::pair<std::string, std::string>> values;
   std::string base;
   ModelError error;
@@ -81,17 +88,28 @@ struct PointResult {
 
 // Writes <out>/points/NNNN.toml for every point, <out>/jobs.txt (one `phongsim sweep point` per
 // line: `parallel < jobs.txt`, or line $SLURM_ARRAY_TASK_ID + 1 in a Slurm array job) and
-// <out>/Makefile (`make -j`). Returns the points.
+// <out>/Makefile (`make -j`), all or none (an OutputSet, "sweep plan": planning again replaces
+// the plan and the merged tables), and makes <out>/results/. Returns the points.
 std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const std::filesystem::path& out);
 
+// The hash a point result keeps of its configuration's content.
+[[nodiscard]] std::string content_hash(const std::string& text);
+
 // Result JSON of one point (written by `phongsim sweep point`, read by merge).
+[[nodiscard]] std::string point_result_json(const PointResult& r);
 void write_point_result(const PointResult& r, const std::filesystem::path& path);
 
 // Collects <out>/results/*.json into <out>/sweep.csv and <out>/summary.md (the Pareto front
 // marked) and, with synthesis, <out>/pareto.csv and pareto.png (scripts/plot.py pareto: max
-// error against area, one series per variant, the front drawn and its points labelled).
-// Error when a planned point has no result yet (naming it).
+// error against area, one series per variant, the front drawn and its points labelled), all or
+// none (an OutputSet, "sweep merge"). Error when a planned point has no result yet, or one
+// computed from another version of its point (naming it).
 std::vector<PointResult> merge_sweep(const SweepSpec& spec, const std::filesystem::path& out);
+
+// Whether the Pareto column of `r` (among `results`) is set: no other point has both less or
+// equal area and less or equal max error, one of them less; NaN area (no synthesis): false.
+[[nodiscard]] bool on_pareto_front(const SweepSpec& spec, const PointResult& r,
+                                   const std::vector<PointResult>& results);
 
 // `run`: plan, evaluate every point in this process (progress on `progress`), merge.
 std::vector<PointResult> run_sweep(const SweepSpec& spec, const std::filesystem::path& out,

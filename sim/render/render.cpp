@@ -475,7 +475,22 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   // Units (loading them finds or builds the plugins before rendering starts). A method's unit
   // is its built-in configuration, or options.unit_config when that is of the same pipeline.
   std::string override_pipeline;
-  if (!o.unit_config.empty()) override_pipeline = Config::load(o.unit_config).pipeline();
+  if (!o.unit_config.empty()) {
+    override_pipeline = Config::load(o.unit_config).pipeline();
+    // A configuration no chosen method would run is a mistake, not something to ignore.
+    bool used = false;
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      used = used ||
+             (backends[i] != Backend::float_ref &&
+              fs::path(std::string(chosen[i]->info.config)).parent_path() == override_pipeline);
+    }
+    if (!used) {
+      throw Error(fmt::format(
+          "--unit-config {} is a {} configuration, but no method chosen here runs on a {} unit "
+          "(through --backend model, rtl or auto)",
+          o.unit_config, override_pipeline, override_pipeline));
+    }
+  }
   const auto unit_path = [&](const Method& m) {
     const fs::path built_in = data_root() / "configs" / (std::string(m.info.config) + ".toml");
     const bool replace = !override_pipeline.empty() &&
@@ -501,7 +516,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   }
   const TextureOptions texture{o.texture_size, o.texture_filter};
 
-  if (o.scanline >= f.height) {
+  if (o.scanline < -1 || o.scanline >= f.height) {
     throw Error(
         fmt::format("--scanline {} is outside the image (0..{})", o.scanline, f.height - 1));
   }

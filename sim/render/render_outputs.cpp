@@ -1,13 +1,13 @@
 // The renderer's files (sim/render/render.h: write_render_outputs, metrics_markdown): images,
 // difference images, the scanline data and both figures, the metrics tables.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "base/error.h"
 #include "base/output_file.h"
+#include "base/temporaries.h"
 #include "sim/render/plot.h"
 #include "sim/render/render.h"
 
@@ -37,16 +37,18 @@ std::string metrics_markdown(const RenderResult& r) {
   return s;
 }
 
-std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path& dir) {
-  const int row = r.scanline;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw Error(fmt::format("cannot create {}: {}", dir.string(), ec.message()));
-  { OutputFile probe(dir / ".phongsim-write-test"); }  // unwritable: fail before any output
+std::string render_set_name(const RenderResult& r) { return "render " + r.scene; }
 
+std::vector<fs::path> write_render_outputs(const RenderResult& r, OutputSet& set) {
+  const int row = r.scanline;
   std::vector<fs::path> written;
-  const auto path = [&](std::string_view suffix) {
-    return dir / fmt::format("{}_{}", r.scene, suffix);
+  const auto name = [&](std::string_view suffix) {
+    return fs::path(fmt::format("{}_{}", r.scene, suffix));
+  };
+  // Each file is written to its temporary first; scripts/plot.py reads the images from there.
+  const auto add = [&](std::string_view suffix) -> OutputFile& {
+    written.push_back(name(suffix));
+    return set.add(name(suffix));
   };
   // The reference is a row and a curve of its own unless a float rendering of the same method
   // (the same image) is among the results: that one is then marked as the reference.
@@ -62,16 +64,9 @@ std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path
     return plain_label(m) + (is_reference(m) ? " (reference)" : "");
   };
   // Grid (scripts/plot.py grid): one row per method, image and difference; the reference's image
-  // goes to a temporary file for it.
-  const fs::path reference_png =
-      dir / fmt::format(".{}_reference.tmp.{}.png", r.scene, static_cast<long>(getpid()));
-  struct Remove {
-    fs::path p;
-    ~Remove() {
-      std::error_code e;
-      fs::remove(p, e);
-    }
-  } remove_reference{reference_png};
+  // goes to a temporary directory for it.
+  const TempDir scratch("out");
+  const fs::path reference_png = scratch.path() / "reference.png";
   std::vector<std::string> grid{"--title", r.scene + r.settings, "--columns", "image",
                                 fmt::format("difference from {} (eq. 6.2)", r.reference.method)};
   if (!reference_listed) {
@@ -88,16 +83,16 @@ std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path
   }
   for (const MethodResult& m : r.results) {
     const Image diff = difference_image(r.reference.image, m.image);
-    write_png(m.image, path(m.method + ".png"));
-    write_png(diff, path(m.method + "_diff.png"));
-    written.push_back(path(m.method + ".png"));
-    written.push_back(path(m.method + "_diff.png"));
-    grid.insert(grid.end(), {"--row", label(m), path(m.method + ".png").string(),
-                             path(m.method + "_diff.png").string()});
+    OutputFile& image = add(m.method + ".png");
+    write_png(m.image, image);
+    OutputFile& difference = add(m.method + "_diff.png");
+    write_png(diff, difference);
+    grid.insert(grid.end(),
+                {"--row", label(m), image.temp_path().string(), difference.temp_path().string()});
     names.push_back(label(m));
     curves.push_back(illumination_row(m.image, row));
   }
-  OutputFile scanline_csv(path("scanline.csv"));
+  OutputFile& scanline_csv = add("scanline.csv");
   std::string data = "x";
   for (const std::string& n : names) data += "," + n;
   data += "\n";
@@ -107,34 +102,33 @@ std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path
     data += "\n";
   }
   std::fputs(data.c_str(), scanline_csv.get());
-  scanline_csv.commit();
-  written.push_back(path("scanline.csv"));
-  plot_figure("grid", grid, path("grid.png"));
-  written.push_back(path("grid.png"));
+  std::fflush(scanline_csv.get());
+  plot_figure("grid", grid, add("grid.png"));
   plot_figure("scanline",
-              {"--csv", path("scanline.csv").string(), "--title",
+              {"--csv", scanline_csv.temp_path().string(), "--title",
                fmt::format("{}: illumination along row {} (eq. 6.3){}", r.scene, row, r.settings)},
-              path("scanline.png"));
-  written.push_back(path("scanline.png"));
+              add("scanline.png"));
 
-  OutputFile csv(path("metrics.csv"));
+  OutputFile& csv = add("metrics.csv");
   std::string text =
-      "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds,cpu_seconds\n";
+      "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds,cpu_seconds";
+  for (const auto& region : r.regions) text += ",cc_" + region.first;
+  text += "\n";
   for (const MethodResult& m : r.results) {
-    text += fmt::format("{},{},{:.6f},{:.4f},{},{},{:.6f},{:.6f}\n", m.method,
+    text += fmt::format("{},{},{:.6f},{:.4f},{},{},{:.6f},{:.6f}", m.method,
                         backend_name(m.backend), m.metrics.colour_correctness, m.metrics.psnr,
                         m.metrics.max_error, m.metrics.pixels, m.seconds, m.cpu_seconds);
+    for (const ImageMetrics& rm : m.region_metrics) {
+      text += fmt::format(",{:.6f}", rm.colour_correctness);
+    }
+    text += "\n";
   }
   std::fputs(text.c_str(), csv.get());
-  csv.commit();
-  written.push_back(path("metrics.csv"));
-  OutputFile md(path("metrics.md"));
+  OutputFile& md = add("metrics.md");
   std::fputs(fmt::format("Scene {}, reference {} (float){}\n\n{}", r.scene, r.reference.method,
                          r.settings, metrics_markdown(r))
                  .c_str(),
              md.get());
-  md.commit();
-  written.push_back(path("metrics.md"));
   return written;
 }
 
