@@ -149,28 +149,27 @@ std::string quoted(const std::string& s) {
 
 Rtl rtl_of(const Loaded& l, const Target& t) {
   const RtlDesign design = design_of(l, t);
-  std::shared_ptr<RtlLibrary> library;
   Rtl rtl;
   if (!t.plugin.empty()) {
-    library = RtlLibrary::open_file(t.plugin, design);
+    const auto library = RtlLibrary::open_file(t.plugin, design);
+    const PipelineModel* model = l.model.get();
+    rtl.make_dut = [library, model]() { return library->create(*model); };
     rtl.label = fmt::format("plugin {}", t.plugin);
     rtl.options = " --rtl-plugin " + quoted(t.plugin);
-  } else {
-    const RtlPlugin plugin =
-        locate_rtl(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
-    library = RtlLibrary::open(plugin);
-    if (t.rtl.empty()) {
-      rtl.label = fmt::format("built-in {} ({})", design.top, plugin.key);
-    } else {
-      rtl.label =
-          fmt::format("{} from --rtl, {} files ({})", design.top, design.files.size(), plugin.key);
-      rtl.options = " --rtl";
-      for (const auto& p : t.rtl) rtl.options += " " + quoted(p);
-      if (!t.top.empty()) rtl.options += " --top " + quoted(t.top);
-    }
+    return rtl;
   }
-  const PipelineModel* model = l.model.get();
-  rtl.make_dut = [library, model]() { return library->create(*model); };
+  RtlPlugin plugin;
+  rtl.make_dut = rtl_duts(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing,
+                          stderr, &plugin);
+  if (t.rtl.empty()) {
+    rtl.label = fmt::format("built-in {} ({})", design.top, plugin.key);
+  } else {
+    rtl.label = fmt::format("{} from --rtl, {} file{} ({})", design.top, design.files.size(),
+                            design.files.size() == 1 ? "" : "s", plugin.key);
+    rtl.options = " --rtl";
+    for (const auto& p : t.rtl) rtl.options += " " + quoted(p);
+    if (!t.top.empty()) rtl.options += " --top " + quoted(t.top);
+  }
   return rtl;
 }
 

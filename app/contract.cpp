@@ -9,9 +9,21 @@
 namespace phongsim::cli {
 namespace {
 
-int run(const Target& t) {
+struct ContractCli {
+  Target target;
+  bool verilator_args = false;
+};
+
+int run(const ContractCli& c) {
+  const Target& t = c.target;
   const Loaded l = load(t);
   const RtlDesign d = rtl_design(*l.pipeline, l.cfg);
+  if (c.verilator_args) {  // for your own verilate(): cmake/phongsimConfig.cmake.in
+    fmt::print("TOP {}\n", d.top);
+    for (const RtlParam& p : d.params) fmt::print("PARAM -G{}={}\n", p.name, p.value);
+    for (const auto& f : d.files) fmt::print("SOURCE {}\n", f.string());
+    return 0;
+  }
   fmt::print("// Port contract of pipeline {} for {} (docs/your-rtl.md).\n", l.pipeline->name,
              l.cfg.origin());
   fmt::print(
@@ -54,13 +66,16 @@ int run(const Target& t) {
 }  // namespace
 
 void add_contract(CLI::App& app, Action& action) {
-  auto t = std::make_shared<Target>();
+  auto c = std::make_shared<ContractCli>();
   auto* cmd = app.add_subcommand(
       "contract",
       "Print the port contract a pipeline's RTL implements for a configuration (a SystemVerilog "
       "module header: parameters, ports, widths, which bits carry which field)");
-  t->add_options(*cmd, false);
-  cmd->callback([t, &action]() { action = [t]() { return run(*t); }; });
+  c->target.add_options(*cmd, false);
+  cmd->add_flag("--verilator-args", c->verilator_args,
+                "print the built-in design's top, -G parameters and sources, one per line (TOP, "
+                "PARAM, SOURCE), for your own Verilator build");
+  cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });
 }
 
 }  // namespace phongsim::cli

@@ -39,7 +39,8 @@ int run(const LintCli& c) {
     fmt::print(out, "LINT FAIL {} ({}): verilator exit {}\n", l.cfg.origin(), d.top, r.exit_code);
     return 1;
   }
-  fmt::print(out, "lint clean: {} ({}, {} files)\n", l.cfg.origin(), d.top, d.files.size());
+  fmt::print(out, "lint clean: {} ({}, {} file{})\n", l.cfg.origin(), d.top, d.files.size(),
+             d.files.size() == 1 ? "" : "s");
   return 0;
 }
 

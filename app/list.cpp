@@ -22,7 +22,7 @@ void add_list(CLI::App& app, Action& action) {
         nlohmann::ordered_json configs = nlohmann::ordered_json::array();
         for (const auto& f : pipeline_configs(p)) {
           const Config cfg = Config::load(f);
-          const std::string relative = std::filesystem::relative(f, data_root()).string();
+          const std::string relative = f.lexically_relative(data_root()).string();
           fmt::print(json.text(), "  {:<40} {}\n", relative, cfg.description());
           configs.push_back(
               {{"name", cfg.name()}, {"path", relative}, {"description", cfg.description()}});

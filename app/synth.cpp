@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "app/json.h"
+#include "base/error.h"
 #include "sim/explore/synth.h"
 
 namespace phongsim::cli {
@@ -13,13 +14,21 @@ struct SynthCli {
   Target target;
   bool ice40 = false;
   std::string json;
+  bool check = false;
 };
 
 int run(const SynthCli& c) {
+  if (c.check && c.ice40) throw Error("--check and --ice40 exclude each other");
+  if (c.check && !c.json.empty()) throw Error("--check and --json exclude each other");
   check_distinct({{"--json", c.json}, {"--config", c.target.config}});
   JsonOutput json(c.json);
   const Loaded l = load(c.target);
   const RtlDesign d = design_of(l, c.target);
+  if (c.check) {
+    check_synthesizable(d, l.cfg.origin());
+    fmt::print("{} ({}): synthesizes, no latches\n", l.cfg.origin(), d.top);
+    return 0;
+  }
   const SynthResult r =
       synthesize(d, l.cfg.origin(), SynthOptions{.generic = true, .ice40 = c.ice40}, stderr);
   std::FILE* const out = json.text();
@@ -67,6 +76,9 @@ void add_synth(CLI::App& app, Action& action) {
                 "also iCE40 synthesis and nextpnr place and route (LUTs, DSPs, fmax)");
   cmd->add_option("--json", c->json,
                   "also write the result as JSON (docs/json.md; - is standard output)");
+  cmd->add_flag("--check", c->check,
+                "only check that it synthesizes without latches (Yosys synth, no flattening, no "
+                "statistics: seconds instead of minutes)");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });
 }
 

@@ -2,7 +2,8 @@
 # sim/cosim/rtl_plugin.h). phongsim writes a small CMake project that includes this file and
 # calls these functions, one plugin per design; nothing here knows a pipeline.
 #
-# Requires PHONGSIM_SOURCE_DIR; call phongsim_find_rtl_tools() before adding plugins.
+# Requires PHONGSIM_INCLUDE_DIR (the tree the adapter's #includes resolve in: the sources, or an
+# install's include/phongsim); call phongsim_find_rtl_tools() before adding plugins.
 
 macro(phongsim_find_rtl_tools)
   find_package(verilator REQUIRED HINTS $ENV{VERILATOR_ROOT})
@@ -57,7 +58,7 @@ function(phongsim_add_rtl_plugin TARGET)
     VISIBILITY_INLINES_HIDDEN ON
     BUILD_RPATH "${ARG_RUNTIME_RPATH}")
   target_compile_features(${TARGET} PRIVATE cxx_std_20)
-  target_include_directories(${TARGET} PRIVATE "${PHONGSIM_SOURCE_DIR}")
+  target_include_directories(${TARGET} PRIVATE "${PHONGSIM_INCLUDE_DIR}")
   # Fail at link time, not at dlopen, on a missing symbol.
   target_link_options(${TARGET} PRIVATE -Wl,-z,defs)
   target_link_libraries(${TARGET} PRIVATE fmt::fmt ZLIB::ZLIB Threads::Threads)

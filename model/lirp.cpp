@@ -26,8 +26,8 @@ LirpModel::LirpModel(const LirpFormats& formats) : f_(formats) {
       throw Error(fmt::format("stage {}: {}", name, e.what()));
     }
   };
-  const fx::Format diff = stage("diff (p1 - p0)", [&] { return fx::sub_format(f_.p, f_.p); });
-  const fx::Format prod = stage("prod (a * diff)", [&] { return fx::mul_format(f_.a, diff); });
+  const fx::Format delta = stage("delta (p1 - p0)", [&] { return fx::sub_format(f_.p, f_.p); });
+  const fx::Format prod = stage("prod (a * delta)", [&] { return fx::mul_format(f_.a, delta); });
   (void)stage("out (p0 + prod)", [&] { return fx::add_format(f_.p, prod); });
   for (const char* v : {"p0", "p1"}) {
     for (const char* c : {"x", "y", "z"}) inputs_.push_back({fmt::format("{}_{}", v, c), f_.p});
@@ -39,8 +39,8 @@ LirpModel::LirpModel(const LirpFormats& formats) : f_(formats) {
 LirpStages LirpModel::component(std::int64_t p0, std::int64_t p1, std::int64_t a) const {
   LirpStages s;
   const fx::Fixed p0_v{p0, f_.p};
-  s.diff = fx::sub(fx::Fixed{p1, f_.p}, p0_v);
-  s.prod = fx::mul(fx::Fixed{a, f_.a}, s.diff);
+  s.delta = fx::sub(fx::Fixed{p1, f_.p}, p0_v);
+  s.prod = fx::mul(fx::Fixed{a, f_.a}, s.delta);
   s.sum = fx::add(p0_v, s.prod);
   s.p = fx::resize(s.sum, f_.out, f_.out_round, f_.out_overflow);
   return s;

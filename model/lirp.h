@@ -25,10 +25,10 @@ struct LirpFormats {
 
 // Every stage's value for one component, named as in the RTL.
 struct LirpStages {
-  fx::Fixed diff;  // stage diff: p1 - p0, exact
-  fx::Fixed prod;  // stage prod: a * diff, exact
-  fx::Fixed sum;   // stage out:  p0 + prod, exact
-  fx::Fixed p;     // stage out:  sum requantized to the output format
+  fx::Fixed delta;  // stage delta: p1 - p0, exact
+  fx::Fixed prod;   // stage prod:  a * delta, exact
+  fx::Fixed sum;    // stage out:   p0 + prod, exact
+  fx::Fixed p;      // stage out:   sum requantized to the output format
 };
 
 class LirpModel final : public PipelineModel {

@@ -10,7 +10,7 @@ namespace {
 const fx::Fixed kOne{1, fx::Format{false, 1, 0}};  // the constant 1 as the RTL writes it
 
 fx::Fixed dot3(const Vec3Fx& a, const Vec3Fx& b) {
-  // (x + y) + z, as lyon_dot3.sv; exact.
+  // (x + y) + z, as rtl/common/fx_dot3.sv; exact (fx_dot3 then rounds once: rq(dot3(a, b), F)).
   return fx::add(fx::add(fx::mul(a[0], b[0]), fx::mul(a[1], b[1])), fx::mul(a[2], b[2]));
 }
 
@@ -122,13 +122,13 @@ LyonStages LyonModel::stages(const std::array<std::int64_t, 3>& n0,
   // Stages 0-2: N' = LIRP(N0, N1, a) = round(n0 + a·(n1 - n0)), as lirp_core.sv.
   for (int c = 0; c < 3; ++c) {
     const fx::Fixed p0{n0[c], f_.vec};
-    const fx::Fixed diff = fx::sub(fx::Fixed{n1[c], f_.vec}, p0);
-    s.np[c] = rq(fx::add(p0, fx::mul(a_fx, diff)), f_.np);
+    const fx::Fixed delta = fx::sub(fx::Fixed{n1[c], f_.vec}, p0);
+    s.np[c] = rq(fx::add(p0, fx::mul(a_fx, delta)), f_.np);
   }
   // Stages 3-5: N.
   s.n = normalize(s.np, f_.n, f_.norm);
   const Vec3Fx& n = s.n.out;
-  // Stage 6: diffuse.
+  // Stage 6: diff, the diffuse term N·L (negative values saturate to 0).
   s.diff = rq(dot3(n, l), f_.diff);
 
   // Stages 2-8: D.
@@ -170,7 +170,7 @@ LyonStages LyonModel::stages(const std::array<std::int64_t, 3>& n0,
   }
   s.xf = rq(s.xk, f_.xf);
 
-  // Stages 11..: f_k = (1 - x/2^k)^(2^k), zero when x/2^k >= 1.
+  // Stages 11..: sq_0 = 1 - x/2^k, sq_j = sq_(j-1)², spec = f_k = sq_k, zero when x/2^k >= 1.
   s.sq[0] = rq(fx::sub(kOne, s.xf), f_.sq);
   for (int j = 1; j <= f_.k; ++j) s.sq[j] = rq(fx::mul(s.sq[j - 1], s.sq[j - 1]), f_.sq);
   s.spec = s.zero ? fx::Fixed{0, f_.spec} : rq(s.sq[f_.k], f_.spec);

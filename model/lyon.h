@@ -45,7 +45,7 @@ struct LyonStages {
   Vec3Fx h;                     // stage 2 (halfway): H = (L + V)/2
   LyonNormStages hn;            // stages 3-5 (halfway): H normalized
   fx::Fixed dot;                // stage 6: N·V (reflect) or H·N (halfway)
-  fx::Fixed diff;               // stage 6: diffuse N·L, clamped at 0 by saturation
+  fx::Fixed diff;               // stage 6: the diffuse term N·L, clamped at 0 by saturation
   Vec3Fx r;                     // stage 7: R = 2(N·V)N - V, or the projection (H·N)N
   Vec3Fx d;                     // stage 8: D
   fx::Fixed dd;                 // stage 9 (arrangement 7): D·D
@@ -54,7 +54,7 @@ struct LyonStages {
   fx::Fixed xk;                 // stage 10: x/2^k, exact
   bool zero = false;            // stage 10: x/2^k >= 1, the output is forced to 0
   fx::Fixed xf;                 // stage 10: x/2^k requantized
-  std::array<fx::Fixed, 4> sq;  // stage 11: t = 1 - xf; stages 12..: sq[j] = sq[j-1]²
+  std::array<fx::Fixed, 4> sq;  // stage 11: sq[0] = 1 - xf; stages 12..: sq[j] = sq[j-1]²
   fx::Fixed spec;               // output
 };
 

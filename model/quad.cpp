@@ -92,13 +92,13 @@ std::size_t QuadModel::walk(const QuadProgram& p, std::vector<std::int64_t>& out
       if (p.edges[k].kind == 2) upper = std::min(upper, q[k]);
     }
     if (lower <= upper) {
-      const std::int64_t k = lower - p.x0;
+      const std::int64_t i0 = lower - p.x0;  // the row's first pixel, from the box's left column
       std::array<std::int64_t, 3> f{}, g{};
       for (int c = 0; c < 3; ++c) {
         const QuadChannel& ch = p.channels[c];
-        // f = F + k·G0 + a·k(k - 1);  g = G0 + 2a·k   (modulo 2^width, as the RTL)
-        f[c] = wrap(u(col_f[c]) + u(k) * u(g0[c]) + u(ch.a) * (u(k) * (u(k) - 1)));
-        g[c] = wrap(u(g0[c]) + ((u(ch.a) * u(k)) << 1));
+        // f = F + i0·G0 + a·i0(i0 - 1);  g = G0 + 2a·i0   (modulo 2^width, as the RTL)
+        f[c] = wrap(u(col_f[c]) + u(i0) * u(g0[c]) + u(ch.a) * (u(i0) * (u(i0) - 1)));
+        g[c] = wrap(u(g0[c]) + ((u(ch.a) * u(i0)) << 1));
       }
       for (std::int64_t x = lower; x <= upper; ++x) {
         out.push_back(x);

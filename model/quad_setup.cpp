@@ -92,8 +92,8 @@ QuadProgram quad_program(const quad::SubpixelTri& tri_in, const std::array<quad:
   };
   for (int ch = 0; ch < 3; ++ch) {
     const quad::ScreenPoly poly = quad::screen_poly(colour[ch], v[0], v[1], v[2], p.x0, p.y0);
-    p.channels[ch] = {q(poly.g), q(poly.c + poly.e), q(poly.a + poly.d),
-                      q(poly.a), q(poly.b),          q(poly.c)};
+    p.channels[ch] = {q(poly.p00), q(poly.c + poly.p01), q(poly.a + poly.p10), q(poly.a), q(poly.b),
+                      q(poly.c)};
   }
   return p;
 }

@@ -156,7 +156,7 @@ std::array<Vec3, 6> sample_normals(Vec3 n0, Vec3 n1, Vec3 n2) {
 // ---- r as a quadratic in pixel indices ----
 
 double eval_poly(const ScreenPoly& p, double i, double j) {
-  return p.a * i * i + p.b * i * j + p.c * j * j + p.d * i + p.e * j + p.g;
+  return p.a * i * i + p.b * i * j + p.c * j * j + p.p10 * i + p.p01 * j + p.p00;
 }
 
 ScreenPoly screen_poly(const Coeffs& coeffs, Vertex2 v0, Vertex2 v1, Vertex2 v2, int x0, int y0) {
@@ -172,9 +172,9 @@ ScreenPoly screen_poly(const Coeffs& coeffs, Vertex2 v0, Vertex2 v1, Vertex2 v2,
   r.a = C[3] * p * p + C[4] * p * m + C[5] * m * m;
   r.b = 2 * C[3] * p * q + C[4] * (p * n + q * m) + 2 * C[5] * m * n;
   r.c = C[3] * q * q + C[4] * q * n + C[5] * n * n;
-  r.d = C[1] * p + C[2] * m + 2 * C[3] * p * u + C[4] * (p * w + m * u) + 2 * C[5] * m * w;
-  r.e = C[1] * q + C[2] * n + 2 * C[3] * q * u + C[4] * (q * w + n * u) + 2 * C[5] * n * w;
-  r.g = eval_st(C, u, w);
+  r.p10 = C[1] * p + C[2] * m + 2 * C[3] * p * u + C[4] * (p * w + m * u) + 2 * C[5] * m * w;
+  r.p01 = C[1] * q + C[2] * n + 2 * C[3] * q * u + C[4] * (q * w + n * u) + 2 * C[5] * n * w;
+  r.p00 = eval_st(C, u, w);
   return r;
 }
 
@@ -185,9 +185,9 @@ std::vector<double> forward_difference(const ScreenPoly& p, int width, int heigh
   std::vector<double> out(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   const double a2 = 2 * p.a;
   const double c2 = 2 * p.c;
-  double row_f = p.g;         // p(0, j)
-  double row_gx = p.a + p.d;  // p(1, j) - p(0, j) = a + b·j + d
-  double gy = p.c + p.e;      // p(0, j + 1) - p(0, j) = c(2j + 1) + e
+  double row_f = p.p00;         // p(0, j)
+  double row_gx = p.a + p.p10;  // p(1, j) - p(0, j) = a + b·j + p10
+  double gy = p.c + p.p01;      // p(0, j + 1) - p(0, j) = c(2j + 1) + p01
   for (int j = 0; j < height; ++j) {
     double f = row_f;
     double gx = row_gx;

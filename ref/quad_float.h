@@ -116,14 +116,15 @@ struct StMap {
 
 // ---- r as a quadratic in screen pixel indices ----
 
-// p(i, j) = a·i² + b·i·j + c·j² + d·i + e·j + g.
+// p(i, j) = a·i² + b·i·j + c·j² + p10·i + p01·j + p00 (p_kl: the coefficient of i^k·j^l; a, b, c
+// keep the names of the program words they become).
 struct ScreenPoly {
   double a = 0;
   double b = 0;
   double c = 0;
-  double d = 0;
-  double e = 0;
-  double g = 0;
+  double p10 = 0;
+  double p01 = 0;
+  double p00 = 0;
 };
 
 [[nodiscard]] double eval_poly(const ScreenPoly& p, double i, double j);

@@ -11,6 +11,7 @@ packages=(
   libtinyobjloader-dev                # OBJ meshes (sim/render/mesh.h)
   python3                             # tests/gen_fx_cosim.py writes a test top at configure time
   python3-matplotlib                  # every figure: grids, scanline and Pareto plots (scripts/plot.py)
+  pybind11-dev python3-dev python3-numpy  # the Python module (python/) and its example
   yosys                               # synthesis checks (no latches) of every RTL top
   nextpnr-ice40                       # iCE40 place and route: fmax of a configuration (sim/explore/synth.h)
   clang-format                        # style check in the test suite

@@ -258,6 +258,52 @@ EOT
       "$phongsim" cosim lirp --rtl-plugin "$plugin" --vectors 100
     ;;
 
+  your-rtl)
+    # docs/your-rtl.md's commands: the independent LIRP passes every configuration under stalls
+    # (through the CI script, JUnit out); the wrong one fails with a first-mismatch report whose
+    # reproduce command fails the same way; a port that breaks the contract is one line, exit 2.
+    ex="$src/examples/your-rtl"
+    PIPELINE=lirp RTL="$ex/my_lirp.sv" TOP=my_lirp JUNIT="$tmp/cosim.xml" VECTORS=20000 \
+      SOURCES=none,random:0.3 SINKS=random:0.5,long:100:300 PHONGSIM="$phongsim" \
+      CONFIGS="$(ls "$src"/configs/lirp/*.toml | tr '\n' ' ')" "$ex/ci.sh" >"$tmp/ci" 2>&1 ||
+      fail "ci.sh on my_lirp: $(cat "$tmp/ci")"
+    grep -q "^16 of 16 runs passed" "$tmp/ci" || fail "ci.sh: $(cat "$tmp/ci")"
+    [ "$(grep -c '^PASS lirp/.*latency 4 cycles; RTL: my_lirp from --rtl, 1 file' "$tmp/ci")" -eq 16 ] ||
+      fail "ci.sh summaries: $(cat "$tmp/ci")"
+    /usr/bin/python3 - "$tmp/cosim.xml" <<'PY' || fail "JUnit: $(cat "$tmp/cosim.xml")"
+import sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+cases = root.findall(".//testcase")
+assert root.tag == "testsuites" and len(cases) == 16, (root.tag, len(cases))
+assert not root.findall(".//failure") and root.get("failures") == "0"
+PY
+    "$phongsim" cosim lirp --rtl "$ex/my_lirp.sv" "$ex/my_lirp_wrong.sv" --top my_lirp_wrong \
+      --vectors 1000 --junit "$tmp/wrong.xml" >"$tmp/wrong" 2>&1
+    [ $? -eq 1 ] || fail "the wrong LIRP did not fail with exit 1: $(cat "$tmp/wrong")"
+    grep -q "^MISMATCH at cycle" "$tmp/wrong" || fail "no mismatch report: $(cat "$tmp/wrong")"
+    grep -q "<-- differs" "$tmp/wrong" || fail "no differing field marked: $(cat "$tmp/wrong")"
+    /usr/bin/python3 - "$tmp/wrong.xml" <<'PY' || fail "JUnit of the failure: $(cat "$tmp/wrong.xml")"
+import sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+failures = root.findall(".//testcase/failure")
+assert len(failures) == 1 and failures[0].get("type") == "mismatch", failures
+assert "MISMATCH at cycle" in failures[0].text
+PY
+    repro=$(sed -n 's/^  reproduce: phongsim //p' "$tmp/wrong")
+    (cd "$src" && eval "\"\$phongsim\" $repro") >"$tmp/again" 2>&1
+    [ $? -eq 1 ] || fail "the reproduce command did not fail: $repro"
+    [ "$(grep '^MISMATCH' "$tmp/again")" = "$(grep '^MISMATCH' "$tmp/wrong")" ] ||
+      fail "the reproduce command failed differently: $(cat "$tmp/again")"
+    sed 's/output logic \[3\*OW-1:0\] out_p_o/output logic [3*OW-4:0] out_p_o/' "$ex/my_lirp.sv" >"$tmp/narrow_lirp.sv"
+    expect_error "port out_p_o of my_lirp is 33 bits wide, the contract says 36 with these parameters" \
+      "$phongsim" cosim lirp --rtl "$tmp/narrow_lirp.sv" --top my_lirp
+    expect_error "top no_such_top|no_such_top" "$phongsim" cosim lirp --rtl "$ex/my_lirp.sv" --top no_such_top
+    sed 's/in_a_i/in_alpha_i/g' "$ex/my_lirp.sv" >"$tmp/alpha_lirp.sv"
+    expect_error "top my_lirp has no port in_a_i" \
+      "$phongsim" cosim lirp --rtl "$tmp/alpha_lirp.sv" --top my_lirp
+    expect_error "--top needs --rtl" "$phongsim" cosim lirp --top my_lirp
+    ;;
+
   render)
     # The main job's command at a small size: every output file, a JSON summary, the RTL rows.
     "$phongsim" render --scene shinyballs --size 12 --no-build --out "$tmp/r" --json "$tmp/r.json" \

@@ -304,11 +304,11 @@ TEST(ConfigModel, PipelineMismatchNamesBoth) {
 
 TEST(ConfigModel, IntermediateOver63BitsIsRefusedNamingTheFile) {
   const auto& lirp = phongsim::find_pipeline("lirp");
-  // diff = S1.40 - S1.40 is S2.40; a * diff = 1.40 * S2.40 needs 1 + 3 + 80 = 84 bits. The
+  // delta = S1.40 - S1.40 is S2.40; a * delta = 1.40 * S2.40 needs 1 + 3 + 80 = 84 bits. The
   // message names the file, the stage (lirp.h: "fx::Error naming the stage") and the operation.
   const std::string text = Lirp("S1.40", "1.40", "S1.10");
   const std::string prod =
-      "stage prod (a * diff): 1.40 * S2.40: the exact result needs 84 bits, over the model's "
+      "stage prod (a * delta): 1.40 * S2.40: the exact result needs 84 bits, over the model's "
       "63-bit limit (int64_t raw values)";
   const Config cfg = Parse(text);
   EXPECT_EQ(ErrorOf([&] { (void)phongsim::make_model(lirp, cfg); }),
@@ -337,7 +337,7 @@ TEST(ConfigModel, IntermediateOver63BitsIsRefusedNamingTheFile) {
   // The first stage: S62.0 - S62.0 needs S63.0, 64 bits.
   EXPECT_EQ(ErrorOf([&] { (void)phongsim::make_model(lirp, Parse(Lirp("S62.0", "1.0"))); }),
             std::string(kOrigin) +
-                ": stage diff (p1 - p0): S62.0 - S62.0: the exact result needs 64 bits, over "
+                ": stage delta (p1 - p0): S62.0 - S62.0: the exact result needs 64 bits, over "
                 "the model's 63-bit limit (int64_t raw values)");
 }
 

@@ -1,6 +1,7 @@
 // Exhaustive co-simulation of the SystemVerilog fixed-point helpers (rtl/common/fx_*.sv) against
 // the model's core (model/fixed.h): every case of tests/gen_fx_cosim.py, every input value
-// (every operand pair for add/sub/mul), every rounding and overflow mode listed there.
+// (every operand pair for add/sub/mul, every pair of vectors for dot3), every rounding and
+// overflow mode listed there.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -19,8 +20,21 @@ Fixed expected(const FxCosimCase& c, std::uint64_t a_bits) {
   const std::string_view op = c.op;
   const Format fa = Format::parse(c.a);
   const Fixed a{from_bits(a_bits, fa), fa};
-  if (op == "resize") {
+  if (op == "resize" || op == "rq") {  // rq: the generator always passes "saturate"
     return resize(a, Format::parse(c.b), parse_round(c.round), parse_overflow(c.overflow));
+  }
+  if (op == "dot3") {  // b is "<b format>:<output format>"; a's components, then b's, from the LSB
+    const std::string_view spec = c.b;
+    const std::size_t colon = spec.find(':');
+    const Format fb = Format::parse(spec.substr(0, colon));
+    const Format fo = Format::parse(spec.substr(colon + 1));
+    const int wa = fa.width();
+    const int wb = fb.width();
+    const auto comp = [&](int shift, Format f) { return Fixed{from_bits(a_bits >> shift, f), f}; };
+    Fixed sum = mul(comp(0, fa), comp(3 * wa, fb));
+    sum = add(sum, mul(comp(wa, fa), comp(3 * wa + wb, fb)));
+    sum = add(sum, mul(comp(2 * wa, fa), comp(3 * wa + 2 * wb, fb)));
+    return resize(sum, fo, parse_round(c.round), parse_overflow(c.overflow));
   }
   if (op == "neg") return neg(a);
   if (op == "abs") return abs(a);

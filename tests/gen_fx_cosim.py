@@ -51,6 +51,14 @@ SCALE = [("S3.4", 2), ("S3.4", 6), ("S3.4", -2), ("S3.4", -5), ("4.4", 5), ("4.4
 
 # Clamping to [0, 1]: signed with and without room above 1.0, unsigned.
 CLAMP = ["S3.4", "S2.5", "S0.7", "4.4", "0.8"]
+# fx_rq (round and saturate) over a subset of the requantizations above, every rounding mode.
+RQ = [("S3.4", "S3.2"), ("S3.4", "S1.3"), ("S3.4", "2.4"), ("4.4", "S2.3"), ("S7.8", "S3.4"),
+      ("8.8", "5.2"), ("S1.10", "0.8"), ("S2.13", "S0.1")]
+# fx_dot3: (a, b, out); a_i holds a's three components then b's (at most 16 bits in all), so
+# every pair of vectors is swept. Exact, rounded and saturating outputs.
+DOT3 = [("S0.1", "S0.1", "S1.2"), ("S0.1", "S0.1", "S0.1"), ("S0.1", "S0.1", "1.0"),
+        ("S1.1", "1.1", "S1.1"), ("S1.1", "1.1", "S3.2"), ("1.2", "0.2", "0.3"),
+        ("S0.2", "S0.2", "S0.1")]
 
 
 def cases():
@@ -68,6 +76,12 @@ def cases():
         yield ("scale", a, str(k), "", "")
     for a in CLAMP:
         yield ("clamp01", a, "", "", "")
+    for a, b in RQ:
+        for r in ROUNDS:
+            yield ("rq", a, b, r, "saturate")
+    for a, b, out in DOT3:
+        for r in ROUNDS:
+            yield ("dot3", a, f"{b}:{out}", r, "saturate")
 
 
 def width_expr(op, a, b):
@@ -76,9 +90,12 @@ def width_expr(op, a, b):
         return f"fx_pkg::fx_width(fx_pkg::fx_scale_fmt({fa}, {b}))"
     if op == "clamp01":
         return f"fx_pkg::fx_width({fa})"
+    if op == "dot3":
+        return f"fx_pkg::fx_width({format_word(b.split(':')[1])})"
     fb = format_word(b) if b else 0
     result = {
         "resize": f"{fb}",
+        "rq": f"{fb}",
         "add": f"fx_pkg::fx_add_fmt({fa}, {fb})",
         "sub": f"fx_pkg::fx_sub_fmt({fa}, {fb})",
         "mul": f"fx_pkg::fx_mul_fmt({fa}, {fb})",
@@ -97,6 +114,16 @@ def instance(i, op, a, b, rnd, ovf):
         lines.append(
             f"  fx_resize #(.InFmt({fa}), .OutFmt({format_word(b)}), .Round({MODES[rnd]}), "
             f".Overflow({MODES[ovf]})) u{i} (.in_i(a_i[{wa}-1:0]), .out_o(r{i}));")
+    elif op == "rq":
+        lines.append(
+            f"  fx_rq #(.InFmt({fa}), .OutFmt({format_word(b)}), .Round({MODES[rnd]})) u{i} "
+            f"(.in_i(a_i[{wa}-1:0]), .out_o(r{i}));")
+    elif op == "dot3":
+        fb, fo = (format_word(f) for f in b.split(":"))
+        wb = f"fx_pkg::fx_width({fb})"
+        lines.append(
+            f"  fx_dot3 #(.AFmt({fa}), .BFmt({fb}), .OutFmt({fo}), .Round({MODES[rnd]})) u{i} "
+            f"(.a_i(a_i[3*{wa}-1:0]), .b_i(a_i[3*{wa}+:3*{wb}]), .dot_o(r{i}));")
     elif op == "neg":
         lines.append(f"  fx_neg #(.AFmt({fa})) u{i} (.a_i(a_i[{wa}-1:0]), .neg_o(r{i}));")
     elif op == "abs":
@@ -108,7 +135,7 @@ def instance(i, op, a, b, rnd, ovf):
                      f".scaled_o(r{i}));")
     else:
         fb = format_word(b)
-        port = {"add": "sum_o", "sub": "diff_o", "mul": "prod_o"}[op]
+        port = {"add": "sum_o", "sub": "delta_o", "mul": "prod_o"}[op]
         lines.append(
             f"  fx_{op} #(.AFmt({fa}), .BFmt({fb})) u{i} (.a_i(a_i[{wa}-1:0]), "
             f".b_i(a_i[8+:fx_pkg::fx_width({fb})]), .{port}(r{i}));")

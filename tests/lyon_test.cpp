@@ -69,8 +69,8 @@ TEST(LyonModel, BacklightClampsDiffuseToZero) {
   const auto [spec, diff] = Shade(AsLyon(m), {0, 0, 1}, {0, 0, 1}, {0, 0, -1}, 1);
   EXPECT_EQ(diff, 0);
   // D = R - L = (0,0,2) saturates to 2047/1024 in S1.10; D·D = 2047²/2^20 rounds to 2095104 in
-  // 3.19 (a tie, to even); x/4 = 32736 in 0.16; t = 32800/65536; t² = 16416.016 -> 16416;
-  // t^4 = 4112.016 -> 4112 in 1.16 = 257 in 1.12 (without the saturation it would be 256).
+  // 3.19 (a tie, to even); x/4 = 32736 in 0.16; sq_0 = 32800/65536; sq_0² = 16416.016 -> 16416;
+  // sq_0^4 = 4112.016 -> 4112 in 1.16 = 257 in 1.12 (without the saturation it would be 256).
   EXPECT_EQ(spec, 257);
 }
 
@@ -80,27 +80,27 @@ TEST(LyonModel, ShapeFunctionAtHandComputedPoints) {
   const Vec3 l{-0.5, 0, 1};
   {
     const auto m = Load("default");  // k = 2
-    // n = 16: x = 2, x/4 = 1/2, t = 1/2, t^4 = 1/16 -> 256.
+    // n = 16: x = 2, x/4 = 1/2, sq_0 = 1/2, sq_0^4 = 1/16 -> 256.
     EXPECT_EQ(Shade(AsLyon(m), up, up, l, 16).first, 256);
     // n = 32: x = 4 = 2^k exactly: the comparator zeroes the output.
     EXPECT_EQ(Shade(AsLyon(m), up, up, l, 32).first, 0);
-    // n = 1: x = 1/8, x/4 = 1/32, t = 31/32, t² = 961/1024 exactly; t^4 = 923521/2^20 is
+    // n = 1: x = 1/8, x/4 = 1/32, sq_0 = 31/32, sq_0² = 961/1024 exactly; sq_0^4 = 923521/2^20 is
     // 57720.0625 in 1.16 -> 57720, which is 3607.5 in 1.12: a tie, to even -> 3608. (Rounding
-    // t^4 directly would give 3607: the squarer's rounding is part of the specification.)
+    // sq_0^4 directly would give 3607: the squarer's rounding is part of the specification.)
     EXPECT_EQ(Shade(AsLyon(m), up, up, l, 1).first, 3608);
   }
   {
-    const auto m = Load("fig7_k1");  // k = 1: n = 8: x = 1, x/2 = 1/2, t² = 1/4 -> 1024.
+    const auto m = Load("fig7_k1");  // k = 1: n = 8: x = 1, x/2 = 1/2, sq_0² = 1/4 -> 1024.
     EXPECT_EQ(Shade(AsLyon(m), up, up, l, 8).first, 1024);
   }
   {
     const auto m = Load("fig8_k1");  // m = 4: (m|D|)² = 4 = 2x, x = 2, x/2 = 1: zero.
     EXPECT_EQ(Shade(AsLyon(m), up, up, l, 4).first, 0);
-    // m = 2: x = 1/2, x/2 = 1/4, t = 3/4, t² = 9/16 -> 2304.
+    // m = 2: x = 1/2, x/2 = 1/4, sq_0 = 3/4, sq_0² = 9/16 -> 2304.
     EXPECT_EQ(Shade(AsLyon(m), up, up, l, 2).first, 2304);
   }
   {
-    const auto m = Load("fig8_k2");  // even k: m = 4: x = 2, x/4 = 1/2, t^4 = 1/16 -> 256.
+    const auto m = Load("fig8_k2");  // even k: m = 4: x = 2, x/4 = 1/2, sq_0^4 = 1/16 -> 256.
     EXPECT_EQ(Shade(AsLyon(m), up, up, l, 4).first, 256);
   }
 }

@@ -81,7 +81,7 @@ TEST_P(MutationTest, IsCaughtAndReproduces) {
   text.replace(text.find(m.from), m.from.size(), m.to);
   std::ofstream(file, std::ios::binary) << text;
 
-  const fs::path phongsim = build_root() / "phongsim";
+  const fs::path phongsim = phongsim_program();
   const fs::path config = data_root() / "configs" / p.name / (std::string(m.config) + ".toml");
   std::vector<std::string> argv{phongsim.string(), "cosim", "--config", config.string(), "--rtl"};
   for (const auto f : p.rtl_files) argv.push_back((dir_ / f).string());

@@ -466,8 +466,8 @@ TEST(QuadScreenPoly, EqualsDirectEvaluationAtPixelCentres) {
         const double terms = std::abs(c[0]) + std::abs(c[1] * s) + std::abs(c[2] * t) +
                              std::abs(c[3] * s * s) + std::abs(c[4] * s * t) +
                              std::abs(c[5] * t * t) + std::abs(p.a * i * i) +
-                             std::abs(p.b * i * j) + std::abs(p.c * j * j) + std::abs(p.d * i) +
-                             std::abs(p.e * j) + std::abs(p.g);
+                             std::abs(p.b * i * j) + std::abs(p.c * j * j) + std::abs(p.p10 * i) +
+                             std::abs(p.p01 * j) + std::abs(p.p00);
         worst_terms = std::max(worst_terms, std::abs(poly - direct) / terms);
         if (well_shaped) worst_shaped = std::max(worst_shaped, std::abs(poly - direct) / scale);
         ++tested;
@@ -488,12 +488,12 @@ TEST(QuadScreenPoly, OriginPixelAndSTItself) {
   EXPECT_EQ(ps.a, 0.0);
   EXPECT_EQ(ps.b, 0.0);
   EXPECT_EQ(ps.c, 0.0);
-  EXPECT_EQ(ps.d, 0.25);
-  EXPECT_EQ(ps.e, 0.0);
-  EXPECT_EQ(ps.g, (3.5 - 1) / 4);
+  EXPECT_EQ(ps.p10, 0.25);
+  EXPECT_EQ(ps.p01, 0.0);
+  EXPECT_EQ(ps.p00, (3.5 - 1) / 4);
   const auto pt = quad::screen_poly({0, 0, 1, 0, 0, 0}, v0, v1, v2, 3, 7);
-  EXPECT_EQ(pt.e, 0.125);
-  EXPECT_EQ(pt.g, (7.5 - 2) / 8);
+  EXPECT_EQ(pt.p01, 0.125);
+  EXPECT_EQ(pt.p00, (7.5 - 2) / 8);
   // s·t = (x - 1)(y - 2)/32: b = 1/32.
   const auto pst = quad::screen_poly({0, 0, 0, 0, 1, 0}, v0, v1, v2, 0, 0);
   EXPECT_EQ(pst.b, 1.0 / 32);

@@ -4,9 +4,21 @@
 // supplies the d1 and d2 of each step, so it can change d2 at a section boundary or reload d1.
 // Shared by the Kuijk–Blake engine and the quadratic colour interpolator.
 //
-// Latency: f_o and d1_o are registers. Parameters: Width - accumulator bits.
-// Ports: clk_i; load_i - f <- f_i, d1 <- d1_i (has priority over step_i); step_i - advance one
-//        pixel using d1_step_i and d2_step_i; f_o, d1_o - the accumulators.
+// Latency: f_o and d1_o are registers (the value after a load or step shows the next cycle);
+// throughput one step per clock.
+// Parameters:
+//   Width     - accumulator bits
+// Ports:
+//   clk_i     - clock (no reset: the caller loads before it steps)
+//   load_i    - f <- f_i, d1 <- d1_i (has priority over step_i)
+//   f_i, d1_i - values loaded
+//   step_i    - advance one pixel: f <- f + d1_step_i, d1 <- d1_step_i + d2_step_i
+//   d1_step_i - the first difference of this step (normally d1_o; another value reloads it)
+//   d2_step_i - the second difference of this step
+//   f_o, d1_o - the accumulators
+//
+// Assertions (checked by tests/stream_rtl_test.cpp): f_o and d1_o change only on load_i or
+// step_i, and then to exactly the sums above.
 module fdiff_acc #(
   parameter int unsigned Width = 32
 ) (

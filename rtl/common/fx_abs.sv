@@ -1,7 +1,14 @@
-// fx_abs: exact magnitude |a| in fx_abs_fmt(AFmt) (model: fx::abs), unsigned and as wide as a
-// (the most negative value's magnitude needs the bit that held the sign). Combinational.
+// fx_abs: exact magnitude |a| in fx_pkg::fx_abs_fmt(AFmt) (model: fx::abs), unsigned and as
+// wide as a (the most negative value's magnitude needs the bit that held the sign).
 //
-// Parameters: AFmt - operand format word. Ports: a_i - operand; abs_o - result.
+// Latency 0 (combinational).
+// Parameters:
+//   AFmt  - operand format word (fx_pkg::fx_fmt)
+// Ports:
+//   a_i   - operand (raw bits)
+//   abs_o - |a| in fx_abs_fmt(AFmt)
+//
+// Assertions: none (no parameter value is invalid).
 module fx_abs #(
   parameter int unsigned AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
   // Derived, do not override.

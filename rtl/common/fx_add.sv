@@ -1,10 +1,16 @@
-// fx_add: exact sum a + b in fx_pkg::fx_add_fmt(AFmt, BFmt) (model: fx::add). Operands are aligned to
-// the sum's binary point; the sum format holds every result, so nothing is rounded or clipped.
-// Combinational; latency 0.
+// fx_add: exact sum a + b in fx_pkg::fx_add_fmt(AFmt, BFmt) (model: fx::add). Operands are
+// aligned to the sum's binary point; the sum format holds every result, so nothing is rounded or
+// clipped.
 //
-// Parameters: AFmt, BFmt - operand format words. Ports: a_i, b_i - operands; sum_o - result.
-module fx_add
-#(
+// Latency 0 (combinational).
+// Parameters:
+//   AFmt, BFmt - operand format words (fx_pkg::fx_fmt)
+// Ports:
+//   a_i, b_i   - operands (raw bits)
+//   sum_o      - a + b in fx_add_fmt(AFmt, BFmt)
+//
+// Assertions: none (no parameter value is invalid).
+module fx_add #(
   parameter int unsigned AFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int unsigned BFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
   // Derived, do not override.
@@ -20,11 +26,22 @@ module fx_add
 
   logic [SumW-1:0] a_aligned, b_aligned;
 
-  fx_resize #(.InFmt(AFmt), .OutFmt(SumFmt), .Round(fx_pkg::FxTruncate), .Overflow(fx_pkg::FxWrap)) u_align_a (
+  // Alignment is exact (SumFmt has at least each operand's bits), so the modes do not matter.
+  fx_resize #(
+    .InFmt   (AFmt),
+    .OutFmt  (SumFmt),
+    .Round   (fx_pkg::FxTruncate),
+    .Overflow(fx_pkg::FxWrap)
+  ) u_align_a (
     .in_i (a_i),
     .out_o(a_aligned)
   );
-  fx_resize #(.InFmt(BFmt), .OutFmt(SumFmt), .Round(fx_pkg::FxTruncate), .Overflow(fx_pkg::FxWrap)) u_align_b (
+  fx_resize #(
+    .InFmt   (BFmt),
+    .OutFmt  (SumFmt),
+    .Round   (fx_pkg::FxTruncate),
+    .Overflow(fx_pkg::FxWrap)
+  ) u_align_b (
     .in_i (b_i),
     .out_o(b_aligned)
   );

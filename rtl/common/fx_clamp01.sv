@@ -1,8 +1,15 @@
-// fx_clamp01: clamp a value to [0, 1] in its own format (model: fx::clamp01): negative values
-// become 0, values above 1.0 become 1.0 (when the format has an integer bit; otherwise it cannot
-// exceed 1). Used before rounding a colour or intensity to its output format. Combinational.
+// fx_clamp01: clamp a value to [0, 1] in its own format (model: fx::clamp01_raw): negative
+// values become 0, values above 1.0 become 1.0 (when the format has an integer bit; otherwise it
+// cannot exceed 1). Used before rounding a colour or intensity to its output format.
 //
-// Parameters: AFmt - format word. Ports: a_i - value; clamped_o - the clamped value (same format).
+// Latency 0 (combinational).
+// Parameters:
+//   AFmt      - format word (fx_pkg::fx_fmt) of a_i and clamped_o
+// Ports:
+//   a_i       - value (raw bits)
+//   clamped_o - min(max(a, 0), 1) in AFmt
+//
+// Assertions: none (no parameter value is invalid).
 module fx_clamp01 #(
   parameter int unsigned AFmt = fx_pkg::fx_fmt(1'b1, 2, 16),
   // Derived, do not override.

@@ -1,9 +1,15 @@
-// fx_mul: exact product a * b in fx_pkg::fx_mul_fmt(AFmt, BFmt) (model: fx::mul); the product width is
-// AW + BW. Combinational; latency 0.
+// fx_mul: exact product a · b in fx_pkg::fx_mul_fmt(AFmt, BFmt) (model: fx::mul); the product
+// is AW + BW bits wide, so nothing is rounded or clipped.
 //
-// Parameters: AFmt, BFmt - operand format words. Ports: a_i, b_i - operands; prod_o - result.
-module fx_mul
-#(
+// Latency 0 (combinational).
+// Parameters:
+//   AFmt, BFmt - operand format words (fx_pkg::fx_fmt)
+// Ports:
+//   a_i, b_i   - operands (raw bits)
+//   prod_o     - a · b in fx_mul_fmt(AFmt, BFmt)
+//
+// Assertions: none (no parameter value is invalid).
+module fx_mul #(
   parameter int unsigned AFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int unsigned BFmt    = fx_pkg::fx_fmt(1'b0, 1, 10),
   // Derived, do not override.

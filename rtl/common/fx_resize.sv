@@ -1,15 +1,25 @@
-// fx_resize: requantize a fixed-point value from InFmt to OutFmt (model: fx::resize_raw).
-//
+// fx_resize: requantize a fixed-point value from InFmt to OutFmt in any rounding and overflow
+// mode (model: fx::resize_raw; specification: docs/fixed-point.md "Requantization"):
 // 1. Align the binary point: shift left when OutFmt has more fraction bits (exact), or drop
-//    bits with rounding Round (fx_pkg::FxTruncate: floor, fx_pkg::FxHalfUp: floor(x + 1/2), fx_pkg::FxHalfEven: ties to
-//    even) when it has fewer.
-// 2. Fit the integer part: fx_pkg::FxSaturate clamps to OutFmt's range, fx_pkg::FxWrap keeps the low bits.
-// Combinational; latency 0. Specification: docs/fixed-point.md.
+//    bits with rounding Round (fx_pkg::FxTruncate: floor, fx_pkg::FxHalfUp: floor(x + 1/2),
+//    fx_pkg::FxHalfEven: ties to even) when it has fewer.
+// 2. Fit the integer part: fx_pkg::FxSaturate clamps to OutFmt's range, fx_pkg::FxWrap keeps the
+//    low bits.
+// The one implementation of rounding and saturation: fx_rq (round and saturate, what every
+// pipeline stage uses) and the exact alignments of fx_add/fx_sub/fx_neg instantiate it.
 //
-// Parameters: InFmt, OutFmt - format words (fx_pkg::fx_fmt); Round, Overflow - fx_pkg modes.
-// Ports: in_i - raw input bits; out_o - raw output bits.
-module fx_resize
-#(
+// Latency 0 (combinational).
+// Parameters:
+//   InFmt    - format word (fx_pkg::fx_fmt) of in_i
+//   OutFmt   - format word of out_o
+//   Round    - fx_pkg::FxTruncate, fx_pkg::FxHalfUp or fx_pkg::FxHalfEven
+//   Overflow - fx_pkg::FxWrap or fx_pkg::FxSaturate
+// Ports:
+//   in_i     - value in InFmt (raw bits)
+//   out_o    - the value requantized to OutFmt (raw bits)
+//
+// Assertions: Round and Overflow are checked at elaboration (end of the module).
+module fx_resize #(
   parameter int unsigned InFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int unsigned Round    = fx_pkg::FxHalfEven,

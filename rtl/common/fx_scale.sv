@@ -1,10 +1,17 @@
-// fx_scale: exact a · 2^Shift in fx_scale_fmt(AFmt, Shift) (model: fx::scale). Moves the binary
-// point; the bits stay, zeros are appended only when the point would pass the last fraction
-// bit, and the value is sign- or zero-extended when the point passes the first integer bit.
-// Pure wiring; combinational.
+// fx_scale: exact a · 2^Shift in fx_pkg::fx_scale_fmt(AFmt, Shift) (model: fx::scale). Moves
+// the binary point; the bits stay, zeros are appended only when the point would pass the last
+// fraction bit, and the value is sign- or zero-extended when the point passes the first integer
+// bit. Pure wiring.
 //
-// Parameters: AFmt - operand format word; Shift - power of two (negative: divide).
-// Ports: a_i - operand; scaled_o - result.
+// Latency 0 (combinational).
+// Parameters:
+//   AFmt     - operand format word (fx_pkg::fx_fmt)
+//   Shift    - power of two (negative: divide)
+// Ports:
+//   a_i      - operand (raw bits)
+//   scaled_o - a · 2^Shift in fx_scale_fmt(AFmt, Shift)
+//
+// Assertions: none (no parameter value is invalid).
 module fx_scale #(
   parameter int unsigned AFmt     = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int          Shift    = 1,

@@ -1,15 +1,25 @@
 // pipe_ctrl: valid/ready control of a Depth-stage pipeline whose data registers live in the
-// datapath modules. Stage i holds one transaction; it loads (en_o[i]) whenever data is offered
-// to it and it is empty or its transaction leaves in the same cycle, so the pipeline runs at one
-// transaction per clock and bubbles collapse under backpressure (as a chain of common_cells
-// stream registers). in_ready_o depends combinationally on out_ready_i through every stage: end
-// the pipeline in a stream_skid.
+// datapath modules. Stage i holds at most one transaction; it loads (en_o[i]) whenever data is
+// offered to it and it is empty or its own transaction leaves in the same cycle
+// (ready = ready_next | ~valid_q, the common_cells stream register rule), so the pipeline runs at
+// one transaction per clock and bubbles collapse under backpressure. in_ready_o depends
+// combinationally on out_ready_i through every stage: end the pipeline in a stream_skid.
 //
-// Latency Depth cycles, throughput 1 per cycle.
-// Parameters: Depth - number of register stages (>= 1).
-// Ports: clk_i, rst_ni (asynchronous, active low); in_valid_i / in_ready_o - upstream;
-//        out_valid_o / out_ready_i - downstream (the data is the last stage's registers);
-//        en_o[i] - load enable of stage i's data registers.
+// Latency Depth cycles; throughput 1 transaction per clock.
+// Parameters:
+//   Depth       - number of register stages (>= 1)
+// Ports:
+//   clk_i       - clock
+//   rst_ni      - asynchronous reset, active low (clears every stage's valid bit)
+//   in_valid_i  - upstream offers a transaction
+//   in_ready_o  - stage 0 can take it (a transfer when both are high)
+//   out_valid_o - the last stage holds a transaction (its data: the last stage's registers)
+//   out_ready_i - downstream takes it
+//   en_o        - en_o[i]: load enable of stage i's data registers (a transfer into stage i)
+//
+// Assertions (checked by tests/stream_rtl_test.cpp): no output valid during or right after reset;
+// out_valid_o stays high and the last stage's registers keep their value (en_o[Depth-1] low)
+// until out_ready_i; every accepted transaction leaves once, in order.
 module pipe_ctrl #(
   parameter int unsigned Depth = 2
 ) (

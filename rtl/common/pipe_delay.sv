@@ -1,10 +1,18 @@
 // pipe_delay: carries a value alongside a pipe_ctrl pipeline for Depth stages (stage j loads
 // when en_i[j]), so side data arrives at the stage that needs it with its own transaction.
 //
-// Latency Depth cycles (in step with the stages whose enables it gets).
-// Parameters: Width - data bits; Depth - stages (>= 1).
-// Ports: clk_i; en_i - the spanned stages' load enables; d_i - value entering the first stage;
-//        q_o - the value held by the last stage.
+// Latency Depth cycles (in step with the stages whose enables it gets); throughput 1 per clock.
+// Parameters:
+//   Width - data bits
+//   Depth - stages (>= 1)
+// Ports:
+//   clk_i - clock (no reset: the pipe_ctrl's valid bits say when a stage holds a transaction)
+//   en_i  - load enables of the spanned stages (pipe_ctrl en_o[first +: Depth])
+//   d_i   - value entering the first stage
+//   q_o   - value held by the last stage
+//
+// Assertions (checked by tests/stream_rtl_test.cpp): q_o is the d_i of the transaction the
+// pipe_ctrl's last spanned stage holds, and does not change while that stage's enable is low.
 module pipe_delay #(
   parameter int unsigned Width = 8,
   parameter int unsigned Depth = 1

@@ -1,11 +1,24 @@
-// stream_skid: skid buffer (spill register) for a valid/ready stream. Both in_ready_o and the
-// outputs come straight from registers, so it cuts every combinational path between its two
-// sides at full throughput. A second slot catches the transaction that arrives in the cycle the
+// stream_skid: skid buffer (spill register) for a valid/ready stream. in_ready_o and the outputs
+// come straight from registers, so it cuts every combinational path between its two sides at
+// full throughput. A second slot ("spare") catches the transaction that arrives in the cycle the
 // downstream stalls.
 //
-// Latency 1 cycle, throughput 1 per cycle.
-// Parameters: Width - data bits.
-// Ports: clk_i, rst_ni (asynchronous, active low); in_* - upstream stream; out_* - downstream.
+// Latency 1 cycle; throughput 1 transaction per clock.
+// Parameters:
+//   Width       - data bits
+// Ports:
+//   clk_i       - clock
+//   rst_ni      - asynchronous reset, active low (empties both slots)
+//   in_valid_i  - upstream offers in_data_i
+//   in_ready_o  - the buffer can take it (the spare slot is empty)
+//   in_data_i   - upstream data
+//   out_valid_o - out_data_o holds a transaction
+//   out_ready_i - downstream takes it
+//   out_data_o  - the oldest transaction held
+//
+// Assertions (checked by tests/stream_rtl_test.cpp): no output valid during or right after reset;
+// out_valid_o stays high and out_data_o unchanged until out_ready_i; every accepted transaction
+// leaves once, in order, unchanged.
 module stream_skid #(
   parameter int unsigned Width = 8
 ) (

@@ -8,7 +8,8 @@
 //            d1 = Δf(0), d2 = Δ²f(0)                       (f, d1, d2 in AccFmt)
 //   event:   n = pixel index; at that pixel d2 <- d2 of the event, and d1 <- d1 of the event
 //            when reload is set; they take effect for the step to the next pixel.
-// Per pixel i:  out = resize(clamp(f, 0, 1), OutFmt);  then f <- f + d1, d1 <- d1 + d2 (wrap).
+// Per pixel i:  out = rq(clamp01(f), OutFmt) (fx_rq: OutRound, saturating);
+//               then f <- f + d1, d1 <- d1 + d2 (fdiff_acc, wrap).
 // An event is applied at the first pixel whose index reaches its n; a pixel that may still need
 // an event waits until the next event word has arrived. Event words left over when the span has
 // ended are read and dropped before the next header. Spans whose events lie before their last
@@ -16,11 +17,21 @@
 // Specification: docs/kb.md.
 //
 // Latency 2 cycles from a header to its first pixel; throughput 1 pixel per clock.
-// Parameters: AccFmt - format word of f, d1, d2 (signed); OutFmt - output format word;
-//             OutRound - rounding of the output; EventBits - width of count (up to 2^EventBits - 1
-//             events per span).
-// Ports: clk_i, rst_ni; in_* - the word stream; out_value_o, out_last_o (last pixel of its span)
-//        with out_valid_o / out_ready_i.
+// Parameters:
+//   AccFmt    - format word of f, d1, d2 (signed)
+//   OutFmt    - output format word
+//   OutRound  - fx_pkg rounding mode of the output
+//   EventBits - width of count (up to 2^EventBits - 1 events per span)
+// Ports:
+//   clk_i, rst_ni            - clock; asynchronous reset, active low
+//   in_valid_i, in_ready_o   - word handshake
+//   in_n_i, in_count_i, in_f_i, in_d1_i, in_d2_i, in_reload_i - the word's fields (above)
+//   out_valid_o, out_ready_i - pixel handshake
+//   out_value_o              - the pixel's value
+//   out_last_o               - the pixel is its span's last
+//
+// Assertions: AccFmt must be signed (elaboration check at the end); the handshakes are the skid
+// buffers' (tests/stream_rtl_test.cpp) and the co-simulation harness checks the output's.
 module kb_engine #(
   parameter int unsigned AccFmt    = fx_pkg::fx_fmt(1'b1, 2, 32),
   parameter int unsigned OutFmt    = fx_pkg::fx_fmt(1'b0, 0, 8),
@@ -138,15 +149,8 @@ module kb_engine #(
     .clamped_o(clamped)
   );
   logic [OutW-1:0] value;
-  fx_resize #(
-    .InFmt   (AccFmt),
-    .OutFmt  (OutFmt),
-    .Round   (OutRound),
-    .Overflow(fx_pkg::FxSaturate)
-  ) u_round (
-    .in_i (clamped),
-    .out_o(value)
-  );
+  fx_rq #(.InFmt(AccFmt), .OutFmt(OutFmt), .Round(OutRound))
+      u_value (.in_i(clamped), .out_o(value));
 
   stream_skid #(.Width(OutW + 1)) u_out (
     .clk_i,

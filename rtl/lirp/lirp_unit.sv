@@ -2,17 +2,27 @@
 // Lyon, TR #43, Fig. 7a (N' = LIRP(N0, N1, a)), as a stream: lirp_core's two stages under a
 // pipe_ctrl, then the rounded result in an output skid buffer. Specification: docs/lirp.md.
 //
-//   stage diff:  diff = p1 - p0                     exact, fx_sub_fmt(P, P)
-//   stage prod:  prod = a · diff                    exact, fx_mul_fmt(A, Diff)
-//   stage out:   p    = resize(p0 + prod, Out)      OutRound, OutOverflow
+//   stage delta:  delta = p1 - p0                   exact, fx_sub_fmt(P, P)
+//   stage prod:   prod  = a · delta                 exact, fx_mul_fmt(A, Delta)
+//   stage out:    p     = resize(p0 + prod, Out)    OutRound, OutOverflow
 //
-// Latency 3 cycles, throughput 1 transaction per clock; valid/ready with backpressure.
-// Parameters: PFmt, AFmt, OutFmt - format words (fx_pkg::fx_fmt) of p0/p1 components, a, and p
-//             components; OutRound, OutOverflow - fx_pkg modes of the output requantization.
-// Ports: clk_i, rst_ni - clock, asynchronous active-low reset;
-//        in_valid_i, in_ready_o, in_p0_i, in_p1_i, in_a_i - input stream; vectors are packed
-//        x, y, z from the least significant end (component c at [c*PW +: PW]);
-//        out_valid_o, out_ready_i, out_p_o - output stream, packed the same way.
+// Latency 3 cycles; throughput 1 transaction per clock; valid/ready with any backpressure.
+// Parameters:
+//   PFmt        - format word (fx_pkg::fx_fmt) of p0's and p1's components
+//   AFmt        - format word of a
+//   OutFmt      - format word of p's components
+//   OutRound    - fx_pkg rounding mode of the output requantization
+//   OutOverflow - fx_pkg overflow mode of the output requantization
+// Ports:
+//   clk_i       - clock
+//   rst_ni      - asynchronous reset, active low
+//   in_valid_i, in_ready_o - input handshake
+//   in_p0_i, in_p1_i - end points, x, y, z packed from the LSB (component c at [c*PW +: PW])
+//   in_a_i      - interpolation factor
+//   out_valid_o, out_ready_i - output handshake
+//   out_p_o     - the interpolated vector, packed the same way
+//
+// Assertions (simulation only, below): an offered output stays valid and unchanged until taken.
 module lirp_unit #(
   parameter int unsigned PFmt        = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int unsigned AFmt        = fx_pkg::fx_fmt(1'b0, 1, 10),

@@ -1,40 +1,55 @@
 // quad_channel: one colour channel of the quadratic interpolator (Vlasic §3.5, §4.3): the
-// channel's value f(i, j) = a·i² + b·i·j + c·j² + d·i + e·j + g over pixel offsets (i, j) from
-// the triangle's origin pixel, by forward differencing — two additions per pixel:
-//   along a row:     f <- f + g,  g <- g + 2a                       (fdiff_acc)
-//   down the column: F <- F + GY, GY <- GY + 2c, G0 <- G0 + b       (values at i = 0)
-//   row start at i = k:  f = F + k·G0 + a·k(k - 1),  g = G0 + 2a·k  (exact products)
+// channel's value at pixel offsets (i, j) from the triangle's origin pixel, the polynomial of the
+// program's words p(i, j) = f + gx·i + gy·j + a·i(i - 1) + b·i·j + c·j(j - 1), by forward
+// differencing, two additions per pixel:
+//   along a row:     f <- f + g,  g <- g + 2a                       (fdiff_acc u_row)
+//   down the column: F <- F + GY, GY <- GY + 2c                     (fdiff_acc u_column, i = 0)
+//                    G0 <- G0 + b                                   (g at i = 0)
+//   row start at i = i0:  f = F + i0·G0 + a·i0(i0 - 1),  g = G0 + 2a·i0  (exact products)
 // All arithmetic in AccFmt bits with two's complement wrap (the setup keeps the true values in
-// range). The output is f clamped to [0, 1] and rounded to OutFmt. Specification: docs/quad.md.
+// range). The output is rq(clamp01(f), OutFmt): clamped to [0, 1], rounded with OutRound,
+// saturated. Specification: docs/quad.md ("Per row and per pixel").
 //
-// Latency 0 from f to value_o (combinational); the accumulators are registers.
-// Parameters: AccFmt - signed accumulator format word; OutFmt - output format; OutRound - its
-//             rounding; KBits - bits of the row-start offset k.
-// Ports: clk_i; load_i - start a triangle from f00_i (F), gy0_i (GY), gx0_i (G0), a_i, b_i, c_i;
-//        row_start_i - start row pixels at offset k_i; pixel_i - step to the next pixel;
-//        row_next_i - step the column accumulators to the next row; value_o - the pixel value.
+// Latency 0 from f to value_o (combinational); the accumulators are registers; one pixel per
+// clock.
+// Parameters:
+//   AccFmt      - signed accumulator format word
+//   OutFmt      - output format word
+//   OutRound    - fx_pkg rounding mode of the output
+//   I0Bits      - bits of the row-start offset i0
+// Ports:
+//   clk_i       - clock (data registers only, no reset)
+//   load_i      - start a triangle: F <- f00_i, GY <- gy0_i, G0 <- gx0_i, and a_i, b_i, c_i
+//   f00_i, gy0_i, gx0_i, a_i, b_i, c_i - the channel's program words f, gy, gx, a, b, c
+//   row_start_i - start the row's pixels at offset i0_i
+//   i0_i        - offset of the row's first pixel from the box's left column x0
+//   pixel_i     - step to the next pixel of the row
+//   row_next_i  - step the column accumulators to the next row
+//   value_o     - the current pixel's value
+//
+// Assertions: none (the caller sequences load, row start, pixel and row steps).
 module quad_channel #(
   parameter int unsigned AccFmt   = fx_pkg::fx_fmt(1'b1, 2, 32),
   parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b0, 0, 8),
   parameter int unsigned OutRound = fx_pkg::FxHalfEven,
-  parameter int unsigned KBits    = 11,
+  parameter int unsigned I0Bits   = 11,
   // Derived, do not override.
   localparam int unsigned AccW    = fx_pkg::fx_width(AccFmt),
   localparam int unsigned OutW    = fx_pkg::fx_width(OutFmt)
 ) (
-  input  logic             clk_i,
-  input  logic             load_i,
-  input  logic [ AccW-1:0] f00_i,
-  input  logic [ AccW-1:0] gy0_i,
-  input  logic [ AccW-1:0] gx0_i,
-  input  logic [ AccW-1:0] a_i,
-  input  logic [ AccW-1:0] b_i,
-  input  logic [ AccW-1:0] c_i,
-  input  logic             row_start_i,
-  input  logic [KBits-1:0] k_i,
-  input  logic             pixel_i,
-  input  logic             row_next_i,
-  output logic [ OutW-1:0] value_o
+  input  logic              clk_i,
+  input  logic              load_i,
+  input  logic [  AccW-1:0] f00_i,
+  input  logic [  AccW-1:0] gy0_i,
+  input  logic [  AccW-1:0] gx0_i,
+  input  logic [  AccW-1:0] a_i,
+  input  logic [  AccW-1:0] b_i,
+  input  logic [  AccW-1:0] c_i,
+  input  logic              row_start_i,
+  input  logic [I0Bits-1:0] i0_i,
+  input  logic              pixel_i,
+  input  logic              row_next_i,
+  output logic [  OutW-1:0] value_o
 );
 
   logic [AccW-1:0] a_q, b_q, c_q, g0_q;
@@ -64,12 +79,12 @@ module quad_channel #(
     .d1_o     (col_gy)
   );
 
-  // Row start: jump from i = 0 to i = k with exact (modulo 2^AccW) products.
-  logic [AccW-1:0] k_ext, k_km1, f_start, g_start;
-  assign k_ext   = AccW'(k_i);
-  assign k_km1   = AccW'(k_i) * (AccW'(k_i) - 1'b1);
-  assign f_start = col_f + k_ext * g0_q + a_q * k_km1;
-  assign g_start = g0_q + ((a_q * k_ext) << 1);
+  // Row start: jump from i = 0 to i = i0 with exact (modulo 2^AccW) products.
+  logic [AccW-1:0] i0_ext, i0_i0m1, f_start, g_start;
+  assign i0_ext  = AccW'(i0_i);
+  assign i0_i0m1 = AccW'(i0_i) * (AccW'(i0_i) - 1'b1);
+  assign f_start = col_f + i0_ext * g0_q + a_q * i0_i0m1;
+  assign g_start = g0_q + ((a_q * i0_ext) << 1);
 
   // Along the row.
   fdiff_acc #(.Width(AccW)) u_row (
@@ -90,14 +105,7 @@ module quad_channel #(
     .a_i      (f),
     .clamped_o(clamped)
   );
-  fx_resize #(
-    .InFmt   (AccFmt),
-    .OutFmt  (OutFmt),
-    .Round   (OutRound),
-    .Overflow(fx_pkg::FxSaturate)
-  ) u_round (
-    .in_i (clamped),
-    .out_o(value_o)
-  );
+  fx_rq #(.InFmt(AccFmt), .OutFmt(OutFmt), .Round(OutRound))
+      u_value (.in_i(clamped), .out_o(value_o));
 
 endmodule

@@ -6,17 +6,32 @@
 // advanced per row with additions only: q <- q + dq + carry, r <- r + dr - carry·d, where carry =
 // r + dr >= d; a "lower" edge bounds x from below by -q, an "upper" edge from above by q). The
 // colour of each channel is forward differenced (quad_channel). A linear (Gouraud) triangle is
-// the same program with a = b = c = 0.
+// the same program with a = b = c = 0. State machine (state_e): Idle (no triangle) -> Row (set up
+// row y's span) -> Pixels (emit its pixels) -> Row ... -> Idle or, in the cycle the last row
+// ends, straight to the next triangle's first Row.
 //
-// Cycles: one per row of the program's row range (the row's span is set up) plus one per
+// Latency 4 cycles at least from a program to its first pixel (input skid buffer, row set-up,
+// output skid buffer). Throughput: one cycle per row of the program's row range plus one per
 // covered pixel; a triangle's program is read in the cycle its last row finishes, so triangles
 // stream without further gaps; a program with no rows costs one cycle. Specification and fill
 // rule: docs/quad.md.
+// Parameters:
+//   AccFmt   - signed accumulator format word of the channels
+//   OutFmt   - colour output format word
+//   OutRound - fx_pkg rounding mode of the colour output
+//   SubBits  - subpixel bits of the setup (sets the DDA widths QW and RW)
+// Ports (fields packed from the LSB in the order listed):
+//   clk_i, rst_ni            - clock; asynchronous reset, active low
+//   in_valid_i, in_ready_o   - program handshake
+//   in_bbox_i                - x0, y0, x1, y1 (CoordW bits each): rows y0..y1, columns x0..x1
+//   in_edge0_i .. in_edge2_i - per edge: kind (2 bits), q, r, d, dq, dr
+//   in_red_i, in_green_i, in_blue_i - per channel: f, gy, gx, a, b, c (AccW bits each)
+//   out_valid_o, out_ready_i - pixel handshake
+//   out_x_o, out_y_o         - the pixel
+//   out_rgb_o                - R, G, B (OutW bits each)
 //
-// Parameters: AccFmt - signed accumulator format of the channels; OutFmt, OutRound - colour
-//             output; SubBits - subpixel bits of the setup (sets the DDA widths).
-// Ports: clk_i, rst_ni; in_* - the program (bbox {x0, y0, x1, y1}; per edge {kind, q, r, d, dq,
-//        dr}; per channel {f, gy, gx, a, b, c}), fields packed from the LSB; out_* - pixels.
+// Assertions: the handshakes are the skid buffers' (tests/stream_rtl_test.cpp); the co-simulation
+// harness checks that a stalled output stays valid and unchanged.
 module quad_walker #(
   parameter int unsigned AccFmt   = fx_pkg::fx_fmt(1'b1, 2, 32),
   parameter int unsigned OutFmt   = fx_pkg::fx_fmt(1'b0, 0, 8),
@@ -70,10 +85,12 @@ module quad_walker #(
   assign {p_y1, p_x1, p_y0, p_x0} = head[4*CoordW-1:0];
 
   // ---- State ----
-  localparam logic [1:0] Idle = 2'd0;    // no triangle
-  localparam logic [1:0] Row = 2'd1;     // setting up the span of row y_q
-  localparam logic [1:0] Pixels = 2'd2;  // emitting pixels x_q .. xr_q of row y_q
-  logic [1:0]        state_q;
+  typedef enum logic [1:0] {
+    Idle   = 2'd0,  // no triangle
+    Row    = 2'd1,  // setting up the span of row y_q
+    Pixels = 2'd2   // emitting pixels x_q .. xr_q of row y_q
+  } state_e;
+  state_e            state_q, state_d;
   logic [CoordW-1:0] x0_q, x1_q, y1_q, y_q, x_q, xr_q;
 
   logic fire, out_ready, row_empty, row_done, tri_done, row_start, row_next;
@@ -131,17 +148,28 @@ module quad_walker #(
   assign row_next  = row_done && !tri_done;
   assign load      = head_valid && (state_q == Idle || tri_done);
 
+  always_comb begin
+    state_d = state_q;
+    if (load) begin
+      if (p_y0 <= p_y1) begin
+        state_d = Row;
+      end else begin
+        state_d = Idle;  // a program with no rows leaves nothing to walk
+      end
+    end else if (tri_done) begin
+      state_d = Idle;
+    end else if (row_next) begin
+      state_d = Row;
+    end else if (row_start) begin
+      state_d = Pixels;
+    end
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       state_q <= Idle;
-    end else if (load) begin
-      state_q <= p_y0 <= p_y1 ? Row : Idle;
-    end else if (tri_done) begin
-      state_q <= Idle;
-    end else if (row_next) begin
-      state_q <= Row;
-    end else if (row_start) begin
-      state_q <= Pixels;
+    end else begin
+      state_q <= state_d;
     end
   end
 
@@ -165,8 +193,8 @@ module quad_walker #(
 
   // ---- Channels ----
   logic [3*OutW-1:0] rgb;
-  logic [CoordW-1:0] k_offset;
-  assign k_offset = lower[CoordW-1:0] - x0_q;
+  logic [CoordW-1:0] i0;  // the row's first pixel, as an offset from the box's left column
+  assign i0 = lower[CoordW-1:0] - x0_q;
   for (genvar ch = 0; ch < 3; ch++) begin : g_channel
     logic [ChanW-1:0] word;
     assign word = head[4*CoordW+3*EdgeW+ch*ChanW+:ChanW];
@@ -174,7 +202,7 @@ module quad_walker #(
       .AccFmt  (AccFmt),
       .OutFmt  (OutFmt),
       .OutRound(OutRound),
-      .KBits   (CoordW)
+      .I0Bits  (CoordW)
     ) u_channel (
       .clk_i,
       .load_i     (load),
@@ -185,7 +213,7 @@ module quad_walker #(
       .b_i        (word[4*AccW+:AccW]),
       .c_i        (word[5*AccW+:AccW]),
       .row_start_i(row_start),
-      .k_i        (k_offset),
+      .i0_i       (i0),
       .pixel_i    (fire),
       .row_next_i (row_next),
       .value_o    (rgb[ch*OutW+:OutW])

@@ -12,10 +12,8 @@
 namespace phongsim {
 namespace {
 
-// "0x802 -2046 -1.998046875": bit pattern, raw integer, real value.
 std::string value_text(const Field& f, std::int64_t raw) {
-  return fmt::format("0x{:0{}x} {:>6} {}", fx::to_bits(raw, f.fmt), (f.fmt.width() + 3) / 4, raw,
-                     fx::to_real(raw, f.fmt));
+  return phongsim::value_text(raw, f.fmt);
 }
 
 std::string field_head(const Field& f) { return fmt::format("{:<8} {:>7}", f.name, f.fmt.str()); }
@@ -284,6 +282,11 @@ std::string failure_context(const CosimReport& r, std::optional<std::uint64_t> o
 }
 
 }  // namespace
+
+std::string value_text(std::int64_t raw, fx::Format fmt) {
+  return fmt::format("0x{:0{}x} {:>6} {}", fx::to_bits(raw, fmt), (fmt.width() + 3) / 4, raw,
+                     fx::to_real(raw, fmt));
+}
 
 std::string CosimReport::summary() const {
   const std::string vectors_in =

@@ -92,7 +92,8 @@ struct CosimReport {
   [[nodiscard]] std::string summary() const;  // one line
 };
 
-using DutFactory = std::function<DutPtr()>;
+// "0x802  -2046 -1.998046875": a raw value as reports show it (bit pattern, raw, real).
+[[nodiscard]] std::string value_text(std::int64_t raw, fx::Format fmt);
 
 // What a co-simulation runs: one configuration's model and stimulus against DUTs from make_dut.
 struct CosimSubject {

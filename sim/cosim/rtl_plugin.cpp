@@ -62,11 +62,11 @@ std::vector<fs::path> adapter_headers() {
     todo.pop_back();
     if (std::find(found.begin(), found.end(), rel) != found.end()) continue;
     found.push_back(rel);
-    std::istringstream in(read_file(data_root() / rel));
+    std::istringstream in(read_file(include_root() / rel));
     std::string line;
     std::smatch m;
     while (std::getline(in, line)) {
-      if (std::regex_search(line, m, include) && fs::exists(data_root() / m[1].str())) {
+      if (std::regex_search(line, m, include) && fs::exists(include_root() / m[1].str())) {
         todo.emplace_back(m[1].str());
       }
     }
@@ -143,7 +143,7 @@ Keyed key_of(const RtlDesign& d) {
   }
   for (const fs::path& header : adapter_headers()) {
     h.add(header.string());
-    h.add(read_file(data_root() / header));
+    h.add(read_file(include_root() / header));
   }
   Keyed k;
   // The key covers the adapter too; its text embeds the key, so hash what precedes it.
@@ -263,10 +263,8 @@ void build_missing(const std::vector<const RtlDesign*>& designs, const std::vect
 
   std::string lists = fmt::format(
       "cmake_minimum_required(VERSION 3.25)\nproject(phongsim_rtl CXX C)\n"
-      "set(PHONGSIM_SOURCE_DIR "
-      "\"{}\")\ninclude(\"${{PHONGSIM_SOURCE_DIR}}/cmake/PhongsimRtl.cmake\")\n"
-      "phongsim_find_rtl_tools()\n",
-      data_root().string());
+      "set(PHONGSIM_INCLUDE_DIR \"{}\")\ninclude(\"{}\")\nphongsim_find_rtl_tools()\n",
+      include_root().string(), (data_root() / "cmake" / "PhongsimRtl.cmake").string());
   lists += have_runtime ? fmt::format("phongsim_import_verilator_runtime(runtime \"{}\")\n",
                                       (runtime_dir / "libphongsim_verilated.so").string())
                         : "phongsim_add_verilator_runtime(runtime)\n";
@@ -366,7 +364,7 @@ std::vector<fs::path> rtl_files(std::span<const fs::path> paths) {
 
 fs::path rtl_cache_dir() {
   if (const char* c = std::getenv("PHONGSIM_CACHE"); c != nullptr && *c != '\0') return c;
-  return build_root() / "rtl-cache";
+  return default_cache_dir();
 }
 
 std::map<std::string, int> check_ports(const RtlDesign& d, const PipelineModel& model) {
@@ -591,6 +589,16 @@ DutPtr RtlLibrary::create(const PipelineModel& model) {
   } catch (const std::runtime_error& e) {
     throw Error(fmt::format("{}: {}", path_.string(), e.what()));
   }
+}
+
+DutFactory rtl_duts(const RtlDesign& design, const PipelineModel& model, RtlBuild policy,
+                    std::FILE* log, RtlPlugin* located) {
+  const RtlPlugin plugin = locate_rtl(design, model, policy, log);
+  if (located != nullptr) *located = plugin;
+  auto library = RtlLibrary::open(plugin);
+  (void)library->create(model);     // bind once now: a port/field disagreement is an error here
+  const PipelineModel* m = &model;  // must outlive the factory (rtl_plugin.h)
+  return [library, m]() { return library->create(*m); };
 }
 
 }  // namespace phongsim

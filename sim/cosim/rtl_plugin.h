@@ -11,6 +11,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <span>
@@ -109,5 +110,13 @@ class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
   RtlInfoFn info_ = nullptr;
   std::filesystem::path path_;
 };
+
+// Makes fresh DUT instances of one plugin (each with its own Verilator context).
+using DutFactory = std::function<DutPtr()>;
+
+// The DUTs of `design` for `model`'s fields: located or built (policy, progress on `log`) and
+// loaded; `located` (optional) receives which plugin. `model` must outlive the factory.
+[[nodiscard]] DutFactory rtl_duts(const RtlDesign& design, const PipelineModel& model,
+                                  RtlBuild policy, std::FILE* log, RtlPlugin* located = nullptr);
 
 }  // namespace phongsim

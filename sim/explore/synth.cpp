@@ -448,4 +448,14 @@ SynthResult synthesize(const RtlDesign& src, const std::string& label, const Syn
   return r;
 }
 
+void check_synthesizable(const RtlDesign& design, const std::string& label) {
+  (void)tool_version({"yosys", "-V"}, "yosys");
+  const TempDir tmp("synth");
+  run_yosys(read_script(design, chparams(design.params), "") +
+                fmt::format("synth -top {0}; check -assert; select -assert-none t:$*dlatch* "
+                            "t:$_DLATCH*",
+                            design.top),
+            tmp.path() / "yosys-check.log", label, design.top);
+}
+
 }  // namespace phongsim

@@ -62,4 +62,8 @@ struct SynthResult {
 SynthResult synthesize(const RtlDesign& design, const std::string& label,
                        const SynthOptions& options, std::FILE* log);
 
+// The quick check of the test suite: Yosys generic `synth` (not flattened, no statistics) of the
+// design with its parameters, `check -assert`, no latches. Error naming the problem otherwise.
+void check_synthesizable(const RtlDesign& design, const std::string& label);
+
 }  // namespace phongsim

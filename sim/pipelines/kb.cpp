@@ -253,6 +253,22 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
 
 int latency(const Config&) { return 2; }  // header word to its first pixel (docs/kb.md)
 
+// A word's stages: the accumulator f of every pixel it emits (before clamping and rounding),
+// then that pixel's output value.
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  auto& m = dynamic_cast<KbModel&>(model);
+  std::vector<std::int64_t> acc, out;
+  m.trace_accumulator(&acc);
+  (void)m.eval(in, out);
+  m.trace_accumulator(nullptr);
+  std::vector<StageValue> s;
+  for (std::size_t i = 0; i < acc.size(); ++i) {
+    s.push_back({fmt::format("pixel{}.f", i), fx::Fixed{acc[i], m.formats().acc}});
+    s.push_back({fmt::format("pixel{}.value", i), fx::Fixed{out[2 * i], m.formats().out}});
+  }
+  return s;
+}
+
 // Random spans of the configuration's setup through the model, against the exact span.
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const KbFormats f = KbFormats::from_config(cfg);
@@ -378,6 +394,7 @@ const PipelineInfo& kb_pipeline() {
       .default_vectors = 100000,
       .latency = latency,
       .one_per_clock = true,
+      .stages = stages,
       .float_error = float_error,
       .analyze = analyze,
       .mutants = {{"kb-event-late", "default", "rtl/kb/kb_engine.sv", "(head_n <= i_q)",

@@ -45,7 +45,21 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
   return Stimulus(model, std::move(directed));
 }
 
-int latency(const Config&) { return 3; }  // diff, prod, out (docs/lirp.md)
+int latency(const Config&) { return 3; }  // delta, prod, out (docs/lirp.md)
+
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  const auto& m = dynamic_cast<const LirpModel&>(model);
+  std::vector<StageValue> s;
+  for (int c = 0; c < 3; ++c) {
+    const LirpStages st = m.component(in[c], in[3 + c], in[6]);
+    const std::string axis(1, "xyz"[c]);
+    s.push_back({"delta_" + axis, st.delta});
+    s.push_back({"prod_" + axis, st.prod});
+    s.push_back({"sum_" + axis, st.sum});
+    s.push_back({"p_" + axis, st.p});
+  }
+  return s;
+}
 
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
              AnalysisReport& out) {
@@ -121,6 +135,7 @@ const PipelineInfo& lirp_pipeline() {
       .default_vectors = 1000000,
       .latency = latency,
       .one_per_clock = true,
+      .stages = stages,
       .float_error = lirp_float_error,
       .analyze = analyze,
       .mutants = {{"round", "default", "rtl/common/fx_resize.sv",
@@ -134,8 +149,8 @@ const PipelineInfo& lirp_pipeline() {
                    "assign ready[i] = out_ready_i | ~valid_q[i];",
                    "assign ready[i] = out_ready_i | valid_q[i];",
                    "last pipeline stage accepts while full: overwrites a stalled transaction"},
-                  {"sub-order", "default", "rtl/lirp/lirp_core.sv", ".a_i   (p1_i[c*PW+:PW]),",
-                   ".a_i   (p0_i[c*PW+:PW]),", "difference p0 - p0 instead of p1 - p0"}},
+                  {"sub-order", "default", "rtl/lirp/lirp_core.sv", ".a_i    (p1_i[c*PW+:PW]),",
+                   ".a_i    (p0_i[c*PW+:PW]),", "difference delta = p0 - p0 instead of p1 - p0"}},
   };
   return info;
 }

@@ -239,9 +239,9 @@ std::string lyon_stage_formats(const LyonModel& model) {
   }
   row("10", "x/2^k (exact)", s.xk.fmt);
   row("10", "x/2^k (requantized)", s.xf.fmt);
-  row("11", "t = 1 - x/2^k", s.sq[0].fmt);
+  row("11", "sq_0 = 1 - x/2^k", s.sq[0].fmt);
   for (int j = 1; j <= f.k; ++j)
-    row(std::to_string(11 + j), fmt::format("t^{}", 1 << j), s.sq[j].fmt);
+    row(std::to_string(11 + j), fmt::format("sq_{} = sq_0^{}", j, 1 << j), s.sq[j].fmt);
   row("out", "spec", s.spec.fmt);
   return out;
 }
@@ -263,6 +263,49 @@ Stimulus make_stimulus(const PipelineModel& model, const Config&) {
 }
 
 int latency(const Config& cfg) { return LyonModel(LyonFormats::from_config(cfg)).latency(); }
+
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  const auto& m = dynamic_cast<const LyonModel&>(model);
+  const LyonFormats& f = m.formats();
+  const LyonStages st = m.stages({in[0], in[1], in[2]}, {in[3], in[4], in[5]}, in[6],
+                                 {in[7], in[8], in[9]}, {in[10], in[11], in[12]}, in[13]);
+  std::vector<StageValue> s;
+  const auto vec = [&](const std::string& name, const Vec3Fx& v) {
+    for (int c = 0; c < 3; ++c) s.push_back({name + "_" + "xyz"[c], v[c]});
+  };
+  const auto flag = [&](const std::string& name, bool b) {
+    s.push_back({name, fx::Fixed{b ? 1 : 0, fx::Format{false, 1, 0}}});
+  };
+  const auto norm = [&](const std::string& name, const LyonNormStages& n) {
+    s.push_back({name + ".z", n.z});
+    s.push_back({name + ".y", n.y});
+    s.push_back({name + ".g", n.g});
+    vec(name, n.out);
+  };
+  vec("np", st.np);
+  norm("n", st.n);
+  if (f.halfway) {
+    vec("h", st.h);
+    norm("hn", st.hn);
+  }
+  s.push_back({"dot", st.dot});
+  s.push_back({"diff", st.diff});
+  vec("r", st.r);
+  vec("d", st.d);
+  if (f.arrangement == 7) {
+    s.push_back({"dd", st.dd});
+  } else {
+    vec("abs_d", st.dabs);
+    vec("w", st.w);
+    flag("big", st.big);
+  }
+  s.push_back({"xk", st.xk});
+  flag("zero", st.zero);
+  s.push_back({"xf", st.xf});
+  for (int j = 0; j <= f.k; ++j) s.push_back({fmt::format("sq_{}", j), st.sq[j]});
+  s.push_back({"spec", st.spec});
+  return s;
+}
 
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const LyonModel model(LyonFormats::from_config(cfg));
@@ -336,9 +379,8 @@ const PipelineInfo& lyon_pipeline() {
       .name = "lyon",
       .summary = "Lyon specular unit: LIRP, g1/g2 normalization, D, x, f_k (Figs. 7, 8), diffuse",
       .top = "lyon_top",
-      .rtl_files = {"rtl/common", "rtl/lirp/lirp_core.sv", "rtl/lyon/lyon_dot3.sv",
-                    "rtl/lyon/lyon_norm.sv", "rtl/lyon/lyon_x.sv", "rtl/lyon/lyon_shape.sv",
-                    "rtl/lyon/lyon_top.sv"},
+      .rtl_files = {"rtl/common", "rtl/lirp/lirp_core.sv", "rtl/lyon/lyon_norm.sv",
+                    "rtl/lyon/lyon_x.sv", "rtl/lyon/lyon_shape.sv", "rtl/lyon/lyon_top.sv"},
       .ports = {{"in_n0_i", true, {"n0_x", "n0_y", "n0_z"}},
                 {"in_n1_i", true, {"n1_x", "n1_y", "n1_z"}},
                 {"in_a_i", true, {"a"}},
@@ -353,28 +395,28 @@ const PipelineInfo& lyon_pipeline() {
       .default_vectors = 1000000,
       .latency = latency,
       .one_per_clock = true,
+      .stages = stages,
       .float_error = float_error,
       .analyze = analyze,
       .mutants = {{"lyon-g2", "default", "rtl/lyon/lyon_norm.sv", "if (en_i[1]) g_q <= g_d;",
                    "if (en_i[1]) g_q <= g_d + 1'b1;", "g2 one LSB too large"},
                   {"lyon-square", "default", "rtl/lyon/lyon_shape.sv",
-                   ".OutFmt  (SqFmt),\n      .Round   (Round),",
-                   ".OutFmt  (SqFmt),\n      .Round   (fx_pkg::FxTruncate),",
+                   "fx_rq #(.InFmt(SqSqFmt), .OutFmt(SqFmt), .Round(Round))",
+                   "fx_rq #(.InFmt(SqSqFmt), .OutFmt(SqFmt), .Round(fx_pkg::FxTruncate))",
                    "shape-function squarers truncate instead of rounding to even (one LSB)"},
                   {"lyon-compare", "default", "rtl/lyon/lyon_x.sv",
                    "assign zero_d = |xk[XkW-1:XkFrac];", "assign zero_d = |xk[XkW-1:XkFrac-1];",
                    "comparator fires at x/2^k >= 1/2 instead of >= 1"},
                   {"lyon-fig8-w", "fig8_k1", "rtl/lyon/lyon_x.sv",
-                   ".OutFmt  (WFmt),\n        .Round   (Round),",
-                   ".OutFmt  (WFmt),\n        .Round   (fx_pkg::FxTruncate),",
+                   "fx_rq #(.InFmt(UFmt), .OutFmt(WFmt), .Round(Round))",
+                   "fx_rq #(.InFmt(UFmt), .OutFmt(WFmt), .Round(fx_pkg::FxTruncate))",
                    "Fig. 8 squarer inputs truncated instead of rounded (one LSB)"},
                   {"lyon-sqrt2", "fig8_k2", "rtl/lyon/lyon_x.sv",
                    "localparam int unsigned S         = (K + 2) / 2;",
                    "localparam int unsigned S         = (K + 1) / 2;",
                    "Fig. 8 shift without the even-k sqrt(2) correction"},
-                  {"lyon-halfway", "halfway", "rtl/lyon/lyon_top.sv",
-                   ".b_i  (vl_q1[c*VecW+:VecW]),", ".b_i  (vl_q1[3*VecW+c*VecW+:VecW]),",
-                   "H = (L + L)/2 instead of (L + V)/2"},
+                  {"lyon-halfway", "halfway", "rtl/lyon/lyon_top.sv", ".b_i(v_q1[c*VecW+:VecW])",
+                   ".b_i(l_q1[c*VecW+:VecW])", "H = (L + L)/2 instead of (L + V)/2"},
                   {"lyon-diffuse-delay", "default", "rtl/lyon/lyon_top.sv",
                    "pipe_delay #(.Width(DiffW), .Depth(Depth - 7))",
                    "pipe_delay #(.Width(DiffW), .Depth(Depth - 8))",

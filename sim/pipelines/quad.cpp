@@ -187,6 +187,22 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
 
 int latency(const Config&) { return 4; }  // program to its first pixel (docs/quad.md)
 
+// A program's stages: every covered pixel's three channel accumulators (before clamping and
+// rounding), named by the pixel.
+std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
+  const auto& m = dynamic_cast<const QuadModel&>(model);
+  std::vector<std::int64_t> out, acc;
+  const std::size_t n = m.walk(QuadModel::program(in), out, &acc);
+  std::vector<StageValue> s;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int ch = 0; ch < 3; ++ch) {
+      s.push_back({fmt::format("pixel({},{}).{}_acc", out[5 * i], out[5 * i + 1], "rgb"[ch]),
+                   fx::Fixed{acc[3 * i + static_cast<std::size_t>(ch)], m.formats().acc}});
+    }
+  }
+  return s;
+}
+
 // Random triangles of the configuration's mode through the model, against direct evaluation.
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const QuadFormats f = QuadFormats::from_config(cfg);
@@ -298,15 +314,16 @@ const PipelineInfo& quad_pipeline() {
       .latency = latency,
       // One cycle per row on span set-up: below one pixel per clock by design (docs/quad.md).
       .one_per_clock = false,
+      .stages = stages,
       .float_error = float_error,
       .analyze = analyze,
       .mutants = {{"quad-fill", "default", "rtl/quad/quad_walker.sv",
                    "assign carry = sum >= {1'b0, d_q};", "assign carry = sum > {1'b0, d_q};",
                    "edge DDA carries one remainder step late: spans off by a pixel"},
                   {"quad-jump", "default", "rtl/quad/quad_channel.sv",
-                   "assign f_start = col_f + k_ext * g0_q + a_q * k_km1;",
-                   "assign f_start = col_f + k_ext * g0_q;",
-                   "row start forgets the quadratic term a·k(k-1)"},
+                   "assign f_start = col_f + i0_ext * g0_q + a_q * i0_i0m1;",
+                   "assign f_start = col_f + i0_ext * g0_q;",
+                   "row start forgets the quadratic term a·i0(i0-1)"},
                   {"quad-column", "default", "rtl/quad/quad_channel.sv",
                    "    .d2_step_i(c_q << 1),", "    .d2_step_i(c_q),",
                    "column second difference c instead of 2c"},

@@ -42,6 +42,12 @@ struct Mutant {
   std::string_view breaks;  // what it breaks, one line
 };
 
+// One stage's value for one input, named as in the RTL and the pipeline's spec.
+struct StageValue {
+  std::string name;
+  fx::Fixed value;
+};
+
 struct PipelineInfo {
   std::string_view name;     // as in --pipeline and configs/<name>/
   std::string_view summary;  // one line for listings
@@ -69,6 +75,8 @@ struct PipelineInfo {
   int (*latency)(const Config& cfg);
   // True when phongsim's RTL takes one input and gives one output per clock, stall-free.
   bool one_per_clock;
+  // Every stage value of one input vector (evaluated like eval(): stateful models advance).
+  std::vector<StageValue> (*stages)(PipelineModel& model, std::span<const std::int64_t> in);
 
   // ---- accuracy ----
   ModelError (*float_error)(const Config& cfg, std::uint64_t samples, std::uint64_t seed);

@@ -1,9 +1,19 @@
-// lyon_dot3: dot product of two 3-vectors, requantized once: out = resize(Σ a_c·b_c, OutFmt)
-// with Round and saturation. The products and their sum are exact. Combinational.
+// fx_dot3: dot product of two 3-vectors, requantized once: dot = rq(a_x·b_x + a_y·b_y + a_z·b_z,
+// OutFmt) with Round, saturating (model: the pipelines' dot3 followed by fx::resize). The
+// products and their sum are exact and summed in the model's order, (x + y) + z. Used for every
+// N·V, H·N, N·L, N'·N' and D·D of the Lyon unit (docs/lyon.md).
 //
-// Parameters: AFmt, BFmt - component format words; OutFmt - result format word; Round - mode.
-// Ports: a_i, b_i - vectors packed x, y, z from the LSB; dot_o - result.
-module lyon_dot3 #(
+// Latency 0 (combinational).
+// Parameters:
+//   AFmt, BFmt - format words of a's and b's components
+//   OutFmt     - format word of the result
+//   Round      - fx_pkg rounding mode of the one requantization
+// Ports:
+//   a_i, b_i   - the vectors, components x, y, z packed from the LSB (AW resp. BW bits each)
+//   dot_o      - rq(a·b, OutFmt)
+//
+// Assertions: Round is checked at elaboration (fx_rq).
+module fx_dot3 #(
   parameter int unsigned AFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int unsigned BFmt    = fx_pkg::fx_fmt(1'b1, 1, 10),
   parameter int unsigned OutFmt  = fx_pkg::fx_fmt(1'b1, 1, 12),
@@ -23,7 +33,7 @@ module lyon_dot3 #(
   localparam int unsigned Sum3Fmt = fx_pkg::fx_add_fmt(Sum2Fmt, ProdFmt);
   localparam int unsigned ProdW   = fx_pkg::fx_width(ProdFmt);
 
-  logic [3*ProdW-1:0] prod;
+  logic [3*ProdW-1:0]                   prod;
   logic [fx_pkg::fx_width(Sum2Fmt)-1:0] sum2;
   logic [fx_pkg::fx_width(Sum3Fmt)-1:0] sum3;
 
@@ -34,7 +44,6 @@ module lyon_dot3 #(
       .prod_o(prod[c*ProdW+:ProdW])
     );
   end
-  // (x + y) + z, the order the model uses.
   fx_add #(.AFmt(ProdFmt), .BFmt(ProdFmt)) u_add_xy (
     .a_i  (prod[0+:ProdW]),
     .b_i  (prod[ProdW+:ProdW]),
@@ -45,14 +54,6 @@ module lyon_dot3 #(
     .b_i  (prod[2*ProdW+:ProdW]),
     .sum_o(sum3)
   );
-  fx_resize #(
-    .InFmt   (Sum3Fmt),
-    .OutFmt  (OutFmt),
-    .Round   (Round),
-    .Overflow(fx_pkg::FxSaturate)
-  ) u_round (
-    .in_i (sum3),
-    .out_o(dot_o)
-  );
+  fx_rq #(.InFmt(Sum3Fmt), .OutFmt(OutFmt), .Round(Round)) u_rq (.in_i(sum3), .out_o(dot_o));
 
 endmodule
