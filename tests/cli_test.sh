@@ -719,15 +719,47 @@ EOT
   json)
     # Finding 9: every command that prints results writes the one versioned schema.
     python3 - "$phongsim" "$tmp" "$src" <<'EOT' || fail "json"
-import csv, json, os, subprocess, sys
+import csv, json, os, re, subprocess, sys
 phongsim, tmp, src = sys.argv[1:4]
 default = os.path.join(src, "configs/lirp/default.toml")
+# docs/json.md, read as data: {(command, kind): {path: keys}}. Every document below is compared
+# with it (the keys documented, no others), and every documented table must have been compared.
+schema, where, path = {}, None, ""
+for line in open(os.path.join(src, "docs/json.md"), encoding="utf-8"):
+    if m := re.match(r"## `([^`]+)`(?: — kind `([^`]+)`)?", line):
+        where, path = (m[1], m[2]), ""
+    elif m := re.match(r"### `([^`]+)`", line):
+        path = m[1]
+    elif (m := re.match(r"\| `([^`]+)` \|", line)) and where:
+        schema.setdefault(where, {}).setdefault(path, []).append(m[1])
+assert len(schema) >= 10, schema
+compared = set()
+def objects(j, path):
+    found = [j]
+    for part in path.split(".") if path else []:
+        name, each = part.removesuffix("[]"), part.endswith("[]")
+        found = [o[name] for o in found if o.get(name) is not None]
+        if each:
+            found = [x for o in found for x in o]
+    return found
+def against_docs(j):
+    where = (j["command"], j.get("kind"))
+    assert where in schema, f"docs/json.md has no section for {where}"
+    for path, keys in schema[where].items():
+        for o in objects(j, path):
+            assert list(o) == keys, (where, path, "documented:", keys, "written:", list(o))
+            compared.add((where, path))
 def doc(*args):
     r = subprocess.run([phongsim, *args, "--json", "-"], capture_output=True, text=True)
     assert r.returncode == 0, (args, r.stderr)
     j = json.loads(r.stdout)
     assert j["schema"] == "phongsim/1" and list(j)[:2] == ["schema", "command"], j
+    against_docs(j)
     return j
+j = doc("lint", "--config", default)
+assert j["clean"] is True and j["files"] > 0, j
+j = doc("build-rtl", "--config", default)
+assert j["plugins"][0]["pipeline"] == "lirp", j
 j = doc("list")
 assert [p["name"] for p in j["pipelines"]] == ["lirp", "lyon", "kb", "quad"], j
 assert any(c["path"] == "configs/lirp/default.toml" for c in j["pipelines"][0]["configs"]), j
@@ -761,6 +793,7 @@ assert len(j["runs"]) == 2 and j["runs"][1]["throughput"] == 1.0, j
 r = subprocess.run([phongsim, "cosim", "--config", default, "--vectors", "100", "--backpressure",
                     "long:500:1", "--timeout", "50", "--json", "-"], capture_output=True, text=True)
 assert r.returncode == 1, r
+against_docs(json.loads(r.stdout))
 run = json.loads(r.stdout)["runs"][0]
 assert run["passed"] is False and run["throughput"] is None and run["latency"] is None, run
 f = run["failure"]
@@ -779,6 +812,8 @@ assert row["pipeline"] == "lirp" and row["base"] == "lirp/default" and row["pare
 assert int(row["cells"]) > 0 and int(row["transistors"]) > 0, row
 assert all(row[k] == "" for k in ("lut4", "carry", "mac16", "ff", "ice40_fits", "fmax_mhz")), row
 assert "-1" not in open(os.path.join(tmp, "s", "sweep.csv")).read()
+missing = {(w, p) for w, paths in schema.items() for p in paths} - compared
+assert not missing, f"documented in docs/json.md but never compared: {sorted(missing)}"
 EOT
     ;;
 
