@@ -18,6 +18,7 @@
 #include "base/error.h"
 #include "model/kb.h"
 #include "model/kb_setup.h"
+#include "sim/pipelines/guard_tables.h"
 
 namespace phongsim {
 namespace {
@@ -329,46 +330,23 @@ void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed,
         "\nDrift: max |accumulator - exact span|, both clamped to [0, 1], in LSBs of an "
         "8-bit output; {} random spans per cell (1-2 terms, n 1..125), seed {}, policy {}\n",
         spans, seed, policy == KbPolicy::d2_only ? "d2_only" : "exact_reload");
-    out.print("  {:>6}", "length");
-    std::vector<std::string> columns{"length"};
-    for (const int g : guards) {
-      out.print(" {:>9}", fmt::format("G={}", g));
-      columns.push_back(fmt::format("g{}", g));
-    }
-    out.print("\n");
-    out.table(fmt::format("Drift in LSBs of an 8-bit output, policy {}, by span length and guard "
-                          "bits",
-                          policy == KbPolicy::d2_only ? "d2_only" : "exact_reload"),
-              columns);
-    for (const int length : lengths) {
-      out.print("  {:>6}", length);
-      std::vector<ReportCell> row{static_cast<std::int64_t>(length)};
-      for (const int g : guards) {
-        const double drift = kb_drift(length, g, policy, out_fmt, spans, seed);
-        out.print(" {:>9.4f}", drift);
-        row.emplace_back(drift);
-      }
-      out.print("\n");
-      out.row(std::move(row));
-    }
+    drift_table(out,
+                fmt::format("Drift in LSBs of an 8-bit output, policy {}, by span length and "
+                            "guard bits",
+                            policy == KbPolicy::d2_only ? "d2_only" : "exact_reload"),
+                "length", 6, lengths, guards, [&](int length, int g) {
+                  return kb_drift(length, g, policy, out_fmt, spans, seed);
+                });
   }
   out.print(
       "\nGuard bits for a drift of at most 1/2 output LSB (exact_reload): analytic bound "
       "G >= log2((L^2 - L + 2)/2), and the smallest G that met it on the spans above\n");
-  out.print("  {:>6} {:>9} {:>9}\n", "length", "analytic", "measured");
-  out.table("Guard bits for a drift of at most 1/2 output LSB (exact_reload)",
-            {"length", "analytic", "measured"});
-  for (const int length : lengths) {
-    int measured = 0;
-    while (measured < 40 &&
-           kb_drift(length, measured, KbPolicy::exact_reload, out_fmt, spans, seed) > 0.5) {
-      ++measured;
-    }
-    out.print("  {:>6} {:>9} {:>9}\n", length, kb_guard_bits_needed(length), measured);
-    out.row({static_cast<std::int64_t>(length),
-             static_cast<std::int64_t>(kb_guard_bits_needed(length)),
-             static_cast<std::int64_t>(measured)});
-  }
+  guard_bits_table(
+      out, "Guard bits for a drift of at most 1/2 output LSB (exact_reload)", "length", 6, lengths,
+      [](int length) { return kb_guard_bits_needed(length); },
+      [&](int length, int g) {
+        return kb_drift(length, g, KbPolicy::exact_reload, out_fmt, spans, seed);
+      });
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "model/quad.h"
 #include "model/quad_setup.h"
+#include "sim/pipelines/guard_tables.h"
 
 namespace phongsim {
 
@@ -232,40 +233,17 @@ void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64
       "to [0, 1], in LSBs of an 8-bit output; {} random triangles with vertices in a "
       "size x size box per cell, quadratic colours, seed {}\n",
       triangles, seed);
-  out.print("  {:>5}", "size");
-  std::vector<std::string> columns{"size"};
-  for (const int g : guards) {
-    out.print(" {:>9}", fmt::format("G={}", g));
-    columns.push_back(fmt::format("g{}", g));
-  }
-  out.print("\n");
-  out.table("Drift in LSBs of an 8-bit output, by box size and guard bits", columns);
-  for (const int size : sizes) {
-    out.print("  {:>5}", size);
-    std::vector<ReportCell> row{static_cast<std::int64_t>(size)};
-    for (const int g : guards) {
-      const double drift = quad_drift(size, g, out_fmt, triangles, seed);
-      out.print(" {:>9.4f}", drift);
-      row.emplace_back(drift);
-    }
-    out.print("\n");
-    out.row(std::move(row));
-  }
+  drift_table(out, "Drift in LSBs of an 8-bit output, by box size and guard bits", "size", 5, sizes,
+              guards,
+              [&](int size, int g) { return quad_drift(size, g, out_fmt, triangles, seed); });
   out.print(
       "\nGuard bits for a drift of at most 1/2 output LSB over a box: analytic bound "
       "G >= log2(1 + (w-1)^2 + (w-1)(h-1) + (h-1)^2), and the smallest G that met it on "
       "the triangles above\n");
-  out.print("  {:>5} {:>9} {:>9}\n", "size", "analytic", "measured");
-  out.table("Guard bits for a drift of at most 1/2 output LSB over a box",
-            {"size", "analytic", "measured"});
-  for (const int size : sizes) {
-    int measured = 0;
-    while (measured < 40 && quad_drift(size, measured, out_fmt, triangles, seed) > 0.5) ++measured;
-    out.print("  {:>5} {:>9} {:>9}\n", size, quad_guard_bits_needed(size, size), measured);
-    out.row({static_cast<std::int64_t>(size),
-             static_cast<std::int64_t>(quad_guard_bits_needed(size, size)),
-             static_cast<std::int64_t>(measured)});
-  }
+  guard_bits_table(
+      out, "Guard bits for a drift of at most 1/2 output LSB over a box", "size", 5, sizes,
+      [](int size) { return quad_guard_bits_needed(size, size); },
+      [&](int size, int g) { return quad_drift(size, g, out_fmt, triangles, seed); });
   out.print(
       "\nOutput against direct evaluation, per configuration: |output - r(s, t)|, r "
       "clamped to the output range, in output LSBs over {} random triangles of the "
