@@ -466,8 +466,8 @@ EOT
 
   outputs)
     # Issue 15, finding 1: outputs never replace what is not a regular file. A FIFO and a symlink
-    # in the temp folder first (never a real device node: CI runs as root); only once those
-    # behave is /dev/null written through, and it must survive.
+    # in the temp folder first, then a device node of the test's own (never a real one: CI runs
+    # as root).
     mkfifo "$tmp/fifo"
     cat "$tmp/fifo" >"$tmp/from_fifo" &
     reader=$!
@@ -483,10 +483,14 @@ EOT
       fail "cosim --json symlink"
     [ -L "$tmp/link.json" ] || fail "the symlink was replaced"
     grep -q '"schema": "phongsim/1"' "$tmp/target.json" || fail "the symlink's target was not written"
-    "$phongsim" cosim --config "$default" --vectors 10 --json /dev/null >/dev/null ||
-      fail "cosim --json /dev/null"
-    [ -c /dev/null ] || fail "/dev/null is no longer a character device"
-    ! ls /dev | grep -q 'null.tmp' || fail "a temporary was left in /dev"
+    # A character device: a private node like /dev/null (mknod needs root, as CI has; skipped
+    # otherwise), so that a regression replaces the test's own node, never the machine's.
+    if mknod "$tmp/null" c 1 3 2>/dev/null; then
+      "$phongsim" cosim --config "$default" --vectors 10 --json "$tmp/null" >/dev/null ||
+        fail "cosim --json to a character device"
+      [ -c "$tmp/null" ] || fail "the character device was replaced by a regular file"
+      ! ls "$tmp" | grep -q 'null.tmp' || fail "a temporary was left beside the device"
+    fi
     # "-" is standard output: the JSON alone on stdout, the report on stderr.
     "$phongsim" cosim --config "$default" --vectors 10 --json - >"$tmp/stdout" 2>"$tmp/stderr" ||
       fail "cosim --json -"
@@ -494,8 +498,11 @@ EOT
       fail "--json -: stdout is not JSON: $(cat "$tmp/stdout")"
     grep -q '^PASS' "$tmp/stderr" || fail "--json -: the report is not on stderr"
     [ ! -e ./- ] && [ ! -e "$tmp/-" ] || fail "a file named - was created"
-    "$phongsim" vectors --config "$default" --vectors 5 --out /dev/stdout 2>/dev/null | head -1 |
-      grep -q '^p0_x,' || fail "vectors --out /dev/stdout"
+    # /dev/stdout is a symlink to /proc/self/fd/1: the same through a link of the test's own.
+    ln -s /proc/self/fd/1 "$tmp/to_stdout"
+    "$phongsim" vectors --config "$default" --vectors 5 --out "$tmp/to_stdout" 2>/dev/null | head -1 |
+      grep -q '^p0_x,' || fail "vectors --out a link to /proc/self/fd/1 (as /dev/stdout)"
+    [ -L "$tmp/to_stdout" ] || fail "the link to standard output was replaced"
     "$phongsim" vectors --config "$default" --vectors 5 --out "$tmp/v.csv" >/dev/null
     "$phongsim" eval --config "$default" --in "$tmp/v.csv" --out - 2>/dev/null | head -1 |
       grep -q '^p_x,p_y,p_z$' || fail "eval --out -"
