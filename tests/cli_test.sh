@@ -218,8 +218,27 @@ EOT
     write_config "$tmp/mine.toml" S1.9 1.9 S1.8
     expect_error "the RTL of lirp is not built for its current content and parameters \(first build of these parameters\)" \
       "$phongsim" cosim --config "$tmp/mine.toml" --no-build --vectors 10
-    "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --backpressure random:0.3 \
-      >"$tmp/first" 2>&1 || fail "first run failed: $(cat "$tmp/first")"
+    # The first run on a terminal (a pseudo-terminal): the Verilation shows its progress.
+    python3 - "$phongsim" "$tmp/mine.toml" "$tmp/first" <<'EOT' || fail "first run: $(cat "$tmp/first")"
+import os, pty, subprocess, sys
+phongsim, cfg, log = sys.argv[1:4]
+leader, follower = pty.openpty()
+p = subprocess.Popen([phongsim, "cosim", "--config", cfg, "--vectors", "20000", "--backpressure",
+                      "random:0.3"], stdout=follower, stderr=follower)
+os.close(follower)
+seen = b""
+while True:
+    try:
+        chunk = os.read(leader, 4096)
+    except OSError:
+        break
+    if not chunk:
+        break
+    seen += chunk
+open(log, "wb").write(seen)
+assert p.wait() == 0, "exit status"
+assert b"\r\x1b[K  Verilating (" in seen and b" s" in seen, "no Verilation progress on a terminal"
+EOT
     grep -q "Verilating lirp" "$tmp/first" || fail "first run did not build: $(cat "$tmp/first")"
     "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --no-build >"$tmp/second" 2>&1 \
       || fail "second run failed: $(cat "$tmp/second")"
