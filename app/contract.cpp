@@ -58,7 +58,9 @@ int run(const ContractCli& c) {
     return s;
   };
   fmt::print("  input  logic in_valid_i,\n  output logic in_ready_o,\n{}", ports(true));
-  fmt::print("  output logic out_valid_o,\n  input  logic out_ready_i,\n{}", ports(false));
+  std::string last = ports(false);  // the last port has no comma: the module header compiles
+  last.replace(last.rfind(",  //"), 1, " ");
+  fmt::print("  output logic out_valid_o,\n  input  logic out_ready_i,\n{}", last);
   fmt::print(");\n");
   return 0;
 }

@@ -7,7 +7,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -323,15 +326,16 @@ QuadParams fit_least_squares(double n) {
 }
 
 QuadParams least_squares(int n) {
-  constexpr int kMaxN = 125;
-  if (n < 1 || n > kMaxN) throw Error(fmt::format("least_squares: n = {} is outside 1..125", n));
-  // Function-local static: built once, on first use, thread-safe (C++11 magic statics).
-  static const std::array<QuadParams, kMaxN> table = [] {
-    std::array<QuadParams, kMaxN> t{};
-    for (int i = 0; i < kMaxN; ++i) t[i] = fit(i + 1);
-    return t;
-  }();
-  return table[n - 1];
+  if (n < 1 || n > kMaxLeastSquaresN) {
+    throw Error(fmt::format("least_squares: n = {} is outside 1..{}", n, kMaxLeastSquaresN));
+  }
+  // Fitted once per n, on first use (a renderer asks for the same few exponents per span).
+  static std::mutex mutex;
+  static std::vector<std::optional<QuadParams>> table(kMaxLeastSquaresN);
+  const std::lock_guard lock(mutex);
+  auto& entry = table[static_cast<std::size_t>(n - 1)];
+  if (!entry) entry = fit(n);
+  return *entry;
 }
 
 double max_error(QuadParams p, double n) {

@@ -66,11 +66,12 @@ struct Section {
 // Throws Error unless n is finite and >= 1.
 [[nodiscard]] QuadParams closed_form(double n);
 
-// The project's least-squares (a, b) for integer n in 1..125 (the paper's table range): the
-// minimizer of E(a, b) = integral over θ in [0, π] of (f(θ) - c(θ))² dθ, with c(θ) = cos^n θ
-// for θ <= π/2 and 0 beyond (uniform weight; see kb_float.cpp for why). Computed once, on
-// first use, for all 125 n (thread-safe function-local static; ~0.15 s in a Release build).
-// Throws Error for n outside 1..125.
+// The project's least-squares (a, b) for integer n in 1..kMaxLeastSquaresN (the paper's table
+// stops at 125; the renderer's halfway exponent 4n and sweeps go further, where the closed forms
+// degrade fast): the minimizer of E(a, b) = integral over θ in [0, π] of (f(θ) - c(θ))² dθ,
+// with c(θ) = cos^n θ for θ <= π/2 and 0 beyond (uniform weight; see kb_float.cpp for why).
+// Each n is fitted on first use (about 1 ms) and kept; thread-safe. Throws Error outside the range.
+inline constexpr int kMaxLeastSquaresN = 10000;
 [[nodiscard]] QuadParams least_squares(int n);
 
 // The fit behind least_squares(), uncached, for any real n in [1, 10000]: a coarse grid then

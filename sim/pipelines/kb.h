@@ -33,7 +33,8 @@ namespace phongsim {
 
 // ---- analysis ----
 
-// Max and RMS of |quad - cos^n| for one n, closed-form and least-squares (a, b).
+// Max and RMS of |quad - cos^n| over θ in [0, π] for one n, closed-form and least-squares (a, b):
+// n = 1..125 (the paper's range), then 128, 256, 512, 1024, 4096.
 struct KbFitRow {
   int n = 0;
   kb::QuadParams closed{}, lsq{};

@@ -253,8 +253,8 @@ std::vector<Span> spans_of(const Frame& f, std::size_t t) {
 }
 
 kb::QuadParams kb_ab(double n) {
-  const double r = std::max(1.0, std::round(n));
-  return r <= 125 ? kb_params(r, KbAbSource::least_squares) : kb::closed_form(r);
+  // The least-squares fit for every exponent (the closed forms degrade fast beyond 125).
+  return kb_params(std::max(1.0, std::round(n)), KbAbSource::least_squares);
 }
 
 KbLightEnds kb_light_ends(const Frame& f, const Light& l, const Span& e) {

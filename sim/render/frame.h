@@ -198,8 +198,8 @@ struct Span {
 // diffuse term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's
 // specfuns.m), in float and through the engine.
 
-// The quadratic's (a, b) for exponent n: our least-squares table for n <= 125 (Kuijk-Blake's
-// range), the closed forms beyond.
+// The quadratic's (a, b) for exponent n: the least-squares fit, for every exponent (the closed
+// forms degrade fast beyond Kuijk-Blake's range 1..125).
 [[nodiscard]] kb::QuadParams kb_ab(double n);
 
 // One light along one span: the light and halfway directions at the two ends.

@@ -87,14 +87,18 @@ const std::vector<Method>& methods() {
       {{"lyon-k3", "Lyon f_3 (unit: Fig. 7, g2)", "lyon/fig7_k3", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 3); }},
-      {{"lyon-fig8-k1", "Lyon f_1, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k1",
-        false},
+      {{"lyon-fig8-k1", "Lyon f_1, root shininess m = round(sqrt(n)) as the unit (Fig. 8)",
+        "lyon/fig8_k1", false},
        Kind::pixel,
-       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 1); }},
-      {{"lyon-fig8-k2", "Lyon f_2, root shininess m = sqrt(n) (unit: Fig. 8)", "lyon/fig8_k2",
-        false},
+       [](Vec3 n, Vec3 l, Vec3 v, double s) {
+         return lyon::lyon_reflect(n, l, v, root_shininess(s) * root_shininess(s), 1);
+       }},
+      {{"lyon-fig8-k2", "Lyon f_2, root shininess m = round(sqrt(n)) as the unit (Fig. 8)",
+        "lyon/fig8_k2", false},
        Kind::pixel,
-       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
+       [](Vec3 n, Vec3 l, Vec3 v, double s) {
+         return lyon::lyon_reflect(n, l, v, root_shininess(s) * root_shininess(s), 2);
+       }},
       {{"blinn", "Blinn-Phong (H*.N)^(4n) (row 5)", "", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::blinn(n, l, v, s); }},
@@ -114,10 +118,13 @@ const std::vector<Method>& methods() {
       {{"halfway-g2-k2", "D = Hg2 - N, f_2 (row 10)", "", false},
        Kind::pixel,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return row(Spec::halfway_g2_k2, n, l, v, s); }},
-      {{"halfway-proj-k1-fig8", "D = H - (H.N)N, f_1, root shininess (unit: halfway_fig8)",
+      {{"halfway-proj-k1-fig8",
+        "D = H - (H.N)N, f_1, root shininess m = round(sqrt(n)) as the unit (halfway_fig8)",
         "lyon/halfway_fig8", false},
        Kind::pixel,
-       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_halfway(n, l, v, s, 1, 0); }},
+       [](Vec3 n, Vec3 l, Vec3 v, double s) {
+         return lyon::lyon_halfway(n, l, v, root_shininess(s) * root_shininess(s), 1, 0);
+       }},
       {{"kb-exact",
         "Kuijk-Blake eq. 1: N, L, H rotated along each span, exact angles, quadratic cos^n", "",
         true},
@@ -581,6 +588,13 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
                                            texmap::filter_name(o.texture_filter));
       break;
     }
+  }
+  const auto is_kb = [](const Method* m) {
+    return m->kind == Kind::kb_exact || m->kind == Kind::kb_decompose ||
+           m->kind == Kind::kb_one_vector;
+  };
+  if (std::any_of(chosen.begin(), chosen.end(), is_kb)) {
+    result.settings += ", Kuijk-Blake (a, b): least-squares fit per exponent";
   }
   // Round by round every method once (the reference first), so that a drift of the machine's
   // speed during the run affects all methods alike; the medians are kept.

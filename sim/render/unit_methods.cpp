@@ -69,7 +69,7 @@ Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
   for (const Fragment& fr : f.fragments) {
     const Vec3 v = f.lighting.v_at(fr.p);
     const double shin =
-        lf.arrangement == 8 ? std::round(std::sqrt(fr.shininess)) : std::round(fr.shininess);
+        lf.arrangement == 8 ? root_shininess(fr.shininess) : std::round(fr.shininess);
     for (const Light& l : f.lighting.lights) {
       const Vec3 ld = Lighting::l_at(l, fr.p);
       for (int rep = 0; rep < 2; ++rep) {

@@ -5,6 +5,7 @@
 // Internal to the renderer (sim/render/render.cpp chooses the method and the backend).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -19,6 +20,10 @@
 #include "sim/render/render.h"
 
 namespace phongsim::shading {
+
+// Lyon's root-shininess unit (Fig. 8) takes m = round(sqrt(n)) and so shades with m^2, not n;
+// the float Fig. 8 methods shade the same way.
+[[nodiscard]] inline double root_shininess(double n) { return std::round(std::sqrt(n)); }
 
 // One configuration's model or Verilated RTL (located, built on demand unless `no_build`).
 class Unit {
