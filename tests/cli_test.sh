@@ -219,26 +219,9 @@ EOT
     expect_error "the RTL of lirp is not built for its current content and parameters \(first build of these parameters\)" \
       "$phongsim" cosim --config "$tmp/mine.toml" --no-build --vectors 10
     # The first run on a terminal (a pseudo-terminal): the Verilation shows its progress.
-    python3 - "$phongsim" "$tmp/mine.toml" "$tmp/first" <<'EOT' || fail "first run: $(cat "$tmp/first")"
-import os, pty, subprocess, sys
-phongsim, cfg, log = sys.argv[1:4]
-leader, follower = pty.openpty()
-p = subprocess.Popen([phongsim, "cosim", "--config", cfg, "--vectors", "20000", "--backpressure",
-                      "random:0.3"], stdout=follower, stderr=follower)
-os.close(follower)
-seen = b""
-while True:
-    try:
-        chunk = os.read(leader, 4096)
-    except OSError:
-        break
-    if not chunk:
-        break
-    seen += chunk
-open(log, "wb").write(seen)
-assert p.wait() == 0, "exit status"
-assert b"\r\x1b[K  Verilating (" in seen and b" s" in seen, "no Verilation progress on a terminal"
-EOT
+    "$src/tests/on_terminal.py" "$tmp/first" "$phongsim" cosim --config "$tmp/mine.toml" \
+      --vectors 20000 --backpressure random:0.3 || fail "first run failed: $(cat "$tmp/first")"
+    grep -qF $'\r\033[K  Verilating (' "$tmp/first" || fail "no Verilation progress on a terminal"
     grep -q "Verilating lirp" "$tmp/first" || fail "first run did not build: $(cat "$tmp/first")"
     "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --no-build >"$tmp/second" 2>&1 \
       || fail "second run failed: $(cat "$tmp/second")"
@@ -719,27 +702,12 @@ EOT
     [ -s "$tmp/found.toml" ] || fail "--write wrote nothing"
     # Progress: on a terminal (a pseudo-terminal here), a line once a run takes over 2 s; nothing
     # when stderr is not a terminal.
-    python3 - "$phongsim" <<'EOT' || fail "progress"
-import os, pty, subprocess, sys
-phongsim = sys.argv[1]
-argv = [phongsim, "cosim", "lyon", "--vectors", "1500000", "--no-directed"]
-leader, follower = pty.openpty()
-p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=follower)
-os.close(follower)
-seen = b""
-while True:
-    try:
-        chunk = os.read(leader, 4096)
-    except OSError:
-        break
-    if not chunk:
-        break
-    seen += chunk
-assert p.wait() == 0, seen
-assert b"\r\x1b[K  cosim lyon/default" in seen and b" s)" in seen, seen[-300:]
-r = subprocess.run(argv, capture_output=True)
-assert r.returncode == 0 and r.stderr == b"", r.stderr
-EOT
+    progress=("$phongsim" cosim lyon --vectors 1500000 --no-directed)
+    "$src/tests/on_terminal.py" "$tmp/pty" "${progress[@]}" || fail "progress: $(cat "$tmp/pty")"
+    grep -qF $'\r\033[K  cosim lyon/default' "$tmp/pty" && grep -qF ' s)' "$tmp/pty" ||
+      fail "no progress line on a terminal: $(tail -c 300 "$tmp/pty")"
+    "${progress[@]}" >/dev/null 2>"$tmp/not_tty" || fail "progress: $(cat "$tmp/not_tty")"
+    [ ! -s "$tmp/not_tty" ] || fail "progress printed when stderr is not a terminal: $(cat "$tmp/not_tty")"
     ;;
 
   json)
