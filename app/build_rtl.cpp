@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/json.h"
 #include "base/error.h"
 #include "base/paths.h"
 
@@ -12,9 +13,12 @@ namespace {
 struct BuildCli {
   Target target;
   bool all = false;
+  std::string json;
 };
 
 int run(const BuildCli& c) {
+  check_distinct({{"--json", c.json}, {"--config", c.target.config}});
+  JsonOutput json(c.json);
   std::vector<Loaded> loaded;
   std::vector<RtlDesign> designs;
   if (c.all) {
@@ -37,11 +41,19 @@ int run(const BuildCli& c) {
   std::vector<const PipelineModel*> models;
   for (const Loaded& l : loaded) models.push_back(l.model.get());
   const std::vector<RtlPlugin> plugins = build_rtl(designs, models, stderr);
+  nlohmann::ordered_json j = json_document("build-rtl");
+  j["plugins"] = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < plugins.size(); ++i) {
     (void)RtlLibrary::open(plugins[i])->create(*loaded[i].model);  // loads and binds
-    fmt::print("{} ({}): {}\n", loaded[i].cfg.origin(), plugins[i].origin,
+    fmt::print(json.text(), "{} ({}): {}\n", loaded[i].cfg.origin(), plugins[i].origin,
                plugins[i].path.string());
+    j["plugins"].push_back({{"config_path", loaded[i].cfg.origin()},
+                            {"pipeline", loaded[i].pipeline->name},
+                            {"key", plugins[i].key},
+                            {"origin", plugins[i].origin},
+                            {"path", plugins[i].path.string()}});
   }
+  json.write(j);
   return 0;
 }
 
@@ -55,6 +67,8 @@ void add_build_rtl(CLI::App& app, Action& action) {
       "rebuilt that did not change), or every built-in configuration's with --all");
   c->target.add_options(*cmd);
   cmd->add_flag("--all", c->all, "every configuration in configs/, in one parallel build");
+  cmd->add_option("--json", c->json,
+                  "also write the plugins as JSON (docs/json.md; - is standard output)");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });
 }
 

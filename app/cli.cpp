@@ -3,30 +3,92 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <charconv>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
 
 #include "base/error.h"
 #include "base/paths.h"
+#include "base/process.h"
 #include "sim/cosim/icarus_dut.h"
 
 namespace phongsim::cli {
 namespace fs = std::filesystem;
 
 CLI::Option* add_count(CLI::App& cmd, const std::string& name, std::uint64_t& value,
-                       const std::string& description, std::uint64_t max) {
+                       const std::string& description, std::uint64_t max, std::uint64_t min) {
   const CLI::Validator check(
-      [max](std::string& text) -> std::string {
+      [min, max](std::string& text) -> std::string {
         if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
-          return fmt::format("'{}' is not a whole number >= 0", text);
+          return fmt::format("'{}' is not a whole number >= {}", text, min);
         }
         if (text.size() > 20 || std::stod(text) > static_cast<double>(max) ||
             (text.size() == 20 && text > "18446744073709551615")) {
           return fmt::format("{} is out of range (at most {})", text, max);
         }
+        if (std::stoull(text) < min) {
+          return fmt::format("{} is out of range (at least {})", text, min);
+        }
         return "";
       },
-      fmt::format("0..{}", max));
+      fmt::format("{}..{}", min, max));
   return cmd.add_option(name, value, description)->check(check)->capture_default_str();
+}
+
+CLI::Option* add_int(CLI::App& cmd, const std::string& name, int& value,
+                     const std::string& description, int lo, int hi) {
+  const CLI::Validator check(
+      [lo, hi](std::string& text) -> std::string {
+        const std::string_view digits =
+            !text.empty() && text[0] == '-' ? std::string_view(text).substr(1) : text;
+        if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
+          return fmt::format("'{}' is not a whole number", text);
+        }
+        if (digits.size() > 10 || std::stoll(text) < lo || std::stoll(text) > hi) {
+          return fmt::format("{} is out of range ({}..{})", text, lo, hi);
+        }
+        return "";
+      },
+      fmt::format("{}..{}", lo, hi));
+  return cmd.add_option(name, value, description)->check(check);
+}
+
+CLI::Option* add_real(CLI::App& cmd, const std::string& name, double& value,
+                      const std::string& description, double lo, double hi) {
+  const CLI::Validator check(
+      [lo, hi](std::string& text) -> std::string {
+        double x = 0;
+        const auto* end = text.data() + text.size();
+        const auto [ptr, ec] = std::from_chars(text.data(), end, x);
+        if (text.empty() || ec != std::errc{} || ptr != end || !std::isfinite(x)) {
+          return fmt::format("'{}' is not a number", text);
+        }
+        if (x < lo || x > hi) return fmt::format("{} is out of range ({}..{})", text, lo, hi);
+        return "";
+      },
+      fmt::format("{}..{}", lo, hi));
+  return cmd.add_option(name, value, description)->check(check);
+}
+
+bool quick_mode() {
+  static const bool quick = [] {
+    const char* q = std::getenv("PHONGSIM_QUICK");
+    const bool on = q != nullptr && std::string_view(q) == "1";
+    if (on) {
+      fmt::print(stderr,
+                 "phongsim: PHONGSIM_QUICK=1: sizes reduced (a smoke test, not a result)\n");
+    }
+    return on;
+  }();
+  return quick;
+}
+
+std::uint64_t quick_cap(std::uint64_t value, std::uint64_t cap) {
+  return quick_mode() ? std::min(value, cap) : value;
 }
 
 void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
@@ -140,20 +202,68 @@ CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimul
                       l.pipeline->default_vectors / 16};
 }
 
+bool progress_shown() { return isatty(STDERR_FILENO) != 0; }
+
 Progress progress_line(bool quiet) {
-  if (quiet || isatty(STDERR_FILENO) == 0) return [](std::string_view, auto, auto) {};
-  auto last = std::make_shared<std::chrono::steady_clock::time_point>();
-  return [last](std::string_view what, std::uint64_t done, std::uint64_t total) {
-    const auto now = std::chrono::steady_clock::now();
-    if (done != total && now - *last < std::chrono::milliseconds(200)) return;
-    *last = now;
-    if (total == 0) {
-      fmt::print(stderr, "\r\033[K  {}: {}", what, done);
-    } else {
-      fmt::print(stderr, "\r\033[K  {}: {}/{}", what, done, total);
-    }
-    if (done == total) fmt::print(stderr, "\r\033[K");
+  if (quiet || !progress_shown()) return [](std::string_view, auto, auto) {};
+  using Clock = std::chrono::steady_clock;
+  struct State {
+    Clock::time_point start = Clock::now();
+    Clock::time_point last;
+    bool shown = false;
   };
+  auto state = std::make_shared<State>();
+  return [state](std::string_view what, std::uint64_t done, std::uint64_t total) {
+    const auto now = Clock::now();
+    if (done == total && total != 0) {  // finished: clear the line if one is shown
+      if (state->shown) fmt::print(stderr, "\r\033[K");
+      state->shown = false;
+      return;
+    }
+    if (now - state->start < std::chrono::seconds(2) ||
+        now - state->last < std::chrono::milliseconds(200)) {
+      return;
+    }
+    state->last = now;
+    state->shown = true;
+    const double s = std::chrono::duration<double>(now - state->start).count();
+    if (total == 0) {
+      fmt::print(stderr, "\r\033[K  {}: {} ({:.0f} s)", what, done, s);
+    } else {
+      fmt::print(stderr, "\r\033[K  {}: {}/{} ({:.0f} s)", what, done, total, s);
+    }
+  };
+}
+
+void install_tool_progress() {
+  if (!progress_shown()) return;
+  set_wait_hook([shown = false](const std::vector<std::string>& argv, double seconds,
+                                const fs::path& log) mutable {
+    if (seconds < 0) {
+      if (shown) fmt::print(stderr, "\r\033[K");
+      shown = false;
+      return;
+    }
+    if (seconds < 2) return;
+    std::string what = fs::path(argv.front()).filename().string();
+    if (what == "cmake" || what == fs::path(cmake_program()).filename().string()) {
+      const bool build = std::find(argv.begin(), argv.end(), "--build") != argv.end();
+      what = build ? "Verilating (building the plugins)" : "Verilating (configuring)";
+    }
+    std::string steps;
+    if (!log.empty()) {  // ninja's last "[done/total]" in the log
+      std::ifstream in(log, std::ios::binary | std::ios::ate);
+      const auto size = static_cast<std::streamoff>(in.tellg());
+      in.seekg(std::max<std::streamoff>(0, size - 4096));
+      std::string tail((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      static const std::regex kStep(R"(\[(\d+)/(\d+)\])");
+      for (std::sregex_iterator it(tail.begin(), tail.end(), kStep), end; it != end; ++it) {
+        steps = " " + it->str();
+      }
+    }
+    fmt::print(stderr, "\r\033[K  {}: {:.0f} s{}", what, seconds, steps);
+    shown = true;
+  });
 }
 
 }  // namespace phongsim::cli

@@ -25,10 +25,34 @@ using Action = std::function<int()>;
 // Upper bounds of counting options: far beyond any run that ends, far below wrap-around.
 inline constexpr std::uint64_t kMaxVectors = 1'000'000'000'000;
 inline constexpr std::uint64_t kMaxCycles = 1'000'000'000'000;
+// A deadlock is declared after at most this many silent cycles (seconds of simulation).
+inline constexpr std::uint64_t kMaxTimeout = 100'000'000;
+// A waveform window: at most ten million cycles (gigabytes of FST beyond that).
+inline constexpr std::uint64_t kMaxTraceWindow = 10'000'000;
+// bench holds its vectors in memory (to time the model and the RTL, not the stimulus).
+inline constexpr std::uint64_t kMaxBenchVectors = 10'000'000;
+// PHONGSIM_QUICK=1 caps (docs/cosim.md): vectors of cosim, bench and vectors.
+inline constexpr std::uint64_t kQuickVectors = 2000;
 
-// A counting option: digits only, at most `max` (no signs, no wrap-around: "-1" is refused).
+// A counting option: digits only, in min..max (no signs, no wrap-around: "-1" is refused).
 CLI::Option* add_count(CLI::App& cmd, const std::string& name, std::uint64_t& value,
-                       const std::string& description, std::uint64_t max);
+                       const std::string& description, std::uint64_t max, std::uint64_t min = 0);
+
+// A whole-number option that may be negative: an optional '-' and digits, in lo..hi (no
+// "1e3", no hex, no wrap-around).
+CLI::Option* add_int(CLI::App& cmd, const std::string& name, int& value,
+                     const std::string& description, int lo, int hi);
+
+// A real-number option: a finite decimal number in lo..hi.
+CLI::Option* add_real(CLI::App& cmd, const std::string& name, double& value,
+                      const std::string& description, double lo, double hi);
+
+// PHONGSIM_QUICK=1 in the environment: every command runs at a reduced size, for smoke tests of
+// the documented commands (tests/doc_commands_test.py; docs/cosim.md says what shrinks). Each
+// quick command says so on stderr once.
+[[nodiscard]] bool quick_mode();
+// `value`, or at most `cap` in quick mode.
+[[nodiscard]] std::uint64_t quick_cap(std::uint64_t value, std::uint64_t cap);
 
 // --pipeline / --config and the RTL to use, shared by every subcommand that works on one
 // configuration.
@@ -74,8 +98,16 @@ struct Rtl {
 [[nodiscard]] CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus);
 
 // Progress on stderr: a self-overwriting line when stderr is a terminal, nothing otherwise (logs
-// stay clean); at most five updates a second. (what, done, total); total 0: unknown.
+// stay clean); shown once the command has run for 2 s (short runs stay quiet), at most five
+// updates a second, with the elapsed time. (what, done, total); total 0: unknown.
 using Progress = std::function<void(std::string_view, std::uint64_t, std::uint64_t)>;
 [[nodiscard]] Progress progress_line(bool quiet = false);
+
+// Whether progress_line() shows anything (stderr is a terminal).
+[[nodiscard]] bool progress_shown();
+
+// Progress of the helper programs phongsim waits for (Verilation through cmake, Yosys, nextpnr)
+// on a terminal: the program, its elapsed time and, for a build, ninja's [done/total].
+void install_tool_progress();
 
 }  // namespace phongsim::cli

@@ -10,8 +10,11 @@
 #include <sstream>
 
 #include "app/commands.h"
+#include "app/json.h"
 #include "base/error.h"
 #include "base/output_file.h"
+#include "base/temporaries.h"
+#include "sim/cosim/waveform.h"
 
 namespace phongsim::cli {
 namespace {
@@ -30,7 +33,39 @@ struct CosimCli {
   CLI::Option* index_opt = nullptr;
 };
 
-nlohmann::json to_json(const CosimReport& r) {
+nlohmann::ordered_json to_json(const FieldValue& v) {
+  return {{"field", v.name}, {"format", v.format}, {"raw", v.raw}, {"real", v.real}};
+}
+
+nlohmann::ordered_json to_json(const CosimFailure& f, const std::string& report) {
+  nlohmann::ordered_json inputs = nlohmann::ordered_json::array();
+  for (const FieldValue& v : f.inputs) inputs.push_back(to_json(v));
+  nlohmann::ordered_json outputs = nlohmann::ordered_json::array();
+  for (const FieldComparison& c : f.outputs) {
+    outputs.push_back(
+        {{"field", c.name},
+         {"format", c.format},
+         {"expected", c.expected ? to_json(*c.expected) : nlohmann::ordered_json(nullptr)},
+         {"got", c.got ? to_json(*c.got) : nlohmann::ordered_json(nullptr)},
+         {"differs", c.differs}});
+  }
+  const auto optional = [](const std::optional<std::uint64_t>& v) {
+    return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+  };
+  return {{"kind", f.kind},
+          {"cycle", f.cycle},
+          {"vector_index", optional(f.vector)},
+          {"output_index", optional(f.output)},
+          {"outputs_of_vector", f.vector && f.output ? nlohmann::ordered_json(f.outputs_of_vector)
+                                                     : nlohmann::ordered_json(nullptr)},
+          {"inputs", inputs},
+          {"outputs", outputs},
+          {"message", f.message},
+          {"in_measurement_run", f.in_measurement_run},
+          {"report", report}};
+}
+
+nlohmann::ordered_json to_json(const CosimReport& r, double seconds) {
   return {
       {"pipeline", r.pipeline},
       {"config", r.config_name},
@@ -45,11 +80,17 @@ nlohmann::json to_json(const CosimReport& r) {
       {"cycles", r.cycles},
       {"source_idle", r.options.source.str()},
       {"backpressure", r.options.sink.str()},
-      {"throughput", r.throughput},
-      {"latency", {{"min", r.latency_min}, {"max", r.latency_max}}},
+      {"throughput",
+       r.measured ? nlohmann::ordered_json(r.throughput) : nlohmann::ordered_json(nullptr)},
+      {"latency", r.measured
+                      ? nlohmann::ordered_json{{"min", r.latency_min}, {"max", r.latency_max}}
+                      : nlohmann::ordered_json(nullptr)},
       {"passed", r.passed},
-      {"failure_kind", r.failure_kind},
-      {"failure", r.failure},
+      {"seconds", seconds},
+      {"trace", r.trace_written.empty() ? nlohmann::ordered_json(nullptr)
+                                        : nlohmann::ordered_json(r.trace_written)},
+      {"failure",
+       r.failure_detail ? to_json(*r.failure_detail, r.failure) : nlohmann::ordered_json(nullptr)},
   };
 }
 
@@ -152,11 +193,16 @@ int run(CosimCli& c) {
   if (!c.trace.empty() && c.target.simulator == "icarus") {
     throw Error("--trace is not available with --simulator icarus (use the Verilator build)");
   }
-  if (total > 1 && (!c.json.empty() || !c.trace.empty() || *c.index_opt)) {
+  if (total > 1 && (!c.trace.empty() || *c.index_opt)) {
     throw Error(
-        "--json, --trace and --vector-index take one run: give one --config and one "
-        "pattern each for --source-idle and --backpressure");
+        "--trace and --vector-index take one run: give one --config and one pattern each for "
+        "--source-idle and --backpressure");
   }
+  const WaveFormat wave = c.trace.empty() ? WaveFormat::fst : wave_format(c.trace);
+  std::vector<std::pair<std::string, std::filesystem::path>> paths{
+      {"--json", c.json}, {"--junit", c.junit}, {"--trace", c.trace}};
+  for (const auto& config : configs) paths.emplace_back("--config", config);
+  check_distinct(paths);
   // Every configuration and its RTL first, so bad input stops the command before any run.
   std::vector<Loaded> loaded;
   std::vector<Target> targets;
@@ -166,20 +212,31 @@ int run(CosimCli& c) {
     loaded.push_back(load(t));
     targets.push_back(t);
   }
-  std::optional<OutputFile> json_file;
+  JsonOutput json(c.json);
   std::optional<OutputFile> trace_file;
   std::optional<OutputFile> junit_file;
-  if (!c.json.empty()) json_file.emplace(c.json);
+  std::optional<TempDir> fst_dir;  // a VCD is converted from an FST written here
   if (!c.junit.empty()) junit_file.emplace(c.junit);
+  std::FILE* const text = json.text();
+  if (junit_file && junit_file->is_stdout()) {
+    throw Error("--junit -: standard output carries the report; give --junit a file");
+  }
   CosimOptions o = c.options;
   if (!c.trace.empty()) {
     trace_file.emplace(c.trace);
-    o.trace_path = trace_file->temp_path().string();
+    if (wave == WaveFormat::vcd) {
+      fst_dir.emplace("out");
+      o.trace_path = (fst_dir->path() / "trace.fst").string();
+    } else {
+      o.trace_path = trace_file->temp_path().string();
+    }
   }
+  const Progress progress = progress_line();
   std::vector<Run> runs;
   for (std::size_t k = 0; k < loaded.size(); ++k) {
     const Loaded& l = loaded[k];
-    o.random_vectors = *c.vectors_opt ? c.vectors : l.pipeline->default_vectors;
+    o.random_vectors =
+        quick_cap(*c.vectors_opt ? c.vectors : l.pipeline->default_vectors, kQuickVectors);
     if (*c.index_opt) {
       o.only_index = c.vector_index;
       o.random_vectors = 0;  // --vector-index replaces --vectors; keep the repro line exact
@@ -190,10 +247,15 @@ int run(CosimCli& c) {
       for (const StallPattern& sink : sink_patterns) {
         o.source = source;
         o.sink = sink;
+        const std::string what = fmt::format("cosim {}/{} (source {}, sink {})", l.pipeline->name,
+                                             l.cfg.name(), source.str(), sink.str());
+        o.progress = [&](std::uint64_t done, std::uint64_t all) { progress(what, done, all); };
         const auto start = std::chrono::steady_clock::now();
         Run r{cosim(subject, o), 0};
+        progress(what, 1, 1);
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (trace_file) {
+          if (wave == WaveFormat::vcd) fst_to_vcd(o.trace_path, trace_file->get());
           trace_file->commit();
           r.report.trace_written = c.trace;
           std::string& f = r.report.failure;
@@ -201,28 +263,32 @@ int run(CosimCli& c) {
             f.replace(at, o.trace_path.size(), c.trace);
           }
         }
-        if (!r.report.passed) fmt::print("{}", r.report.failure);
-        fmt::print("{}\n", r.report.summary());
-        std::fflush(stdout);
+        if (!r.report.passed) fmt::print(text, "{}", r.report.failure);
+        fmt::print(text, "{}\n", r.report.summary());
+        std::fflush(text);
         if (trace_file && r.report.passed) {
-          fmt::print("waveform (first {} cycles): {}\n", o.trace_window, c.trace);
+          fmt::print(text, "waveform (first {} cycles): {}\n", o.trace_window, c.trace);
         }
         runs.push_back(std::move(r));
       }
     }
   }
-  if (json_file) {
-    fmt::print(json_file->get(), "{}\n", to_json(runs.front().report).dump(2));
-    json_file->commit();
+  std::size_t failed = 0;
+  for (const Run& r : runs) failed += r.report.passed ? 0 : 1;
+  if (json.wanted()) {
+    nlohmann::ordered_json j = json_document("cosim");
+    j["passed"] = failed == 0;
+    j["runs_passed"] = runs.size() - failed;
+    j["runs"] = nlohmann::ordered_json::array();
+    for (const Run& r : runs) j["runs"].push_back(to_json(r.report, r.seconds));
+    json.write(j);
   }
   if (junit_file) {
     std::fputs(junit_xml(runs).c_str(), junit_file->get());
     junit_file->commit();
   }
-  std::size_t failed = 0;
-  for (const Run& r : runs) failed += r.report.passed ? 0 : 1;
   if (runs.size() > 1) {
-    fmt::print("{} of {} runs passed\n", runs.size() - failed, runs.size());
+    fmt::print(text, "{} of {} runs passed\n", runs.size() - failed, runs.size());
   }
   return failed == 0 ? 0 : 1;
 }
@@ -252,17 +318,21 @@ void add_cosim(CLI::App& app, Action& action) {
                            "run only this vector (as numbered in a failure report)", kMaxVectors);
   cmd->add_flag("!--no-directed", c->options.directed, "skip the directed corners");
   cmd->add_option("--trace", c->trace,
-                  "write an FST waveform: the window before the first failure, or the first "
-                  "cycles of a passing run");
+                  "write a waveform, FST (FILE.fst) or VCD (FILE.vcd): the window before the "
+                  "first failure, or the first cycles of a passing run");
   add_count(*cmd, "--trace-window", c->options.trace_window, "waveform length in cycles",
-            kMaxCycles);
+            kMaxTraceWindow, 1);
   add_count(*cmd, "--timeout", c->options.timeout,
-            "cycles without a handshake that count as deadlock (0: 100000)", kMaxCycles);
+            "cycles without a handshake that count as deadlock (0: 100000 plus the longest "
+            "stall the patterns make)",
+            kMaxTimeout);
   cmd->add_option("--jobs", c->options.jobs,
                   "workers (threads) sharing a run's shards; the results do not depend on it")
       ->check(CLI::Range(1U, 256U))
       ->capture_default_str();
-  cmd->add_option("--json", c->json, "write a JSON summary (one run)");
+  cmd->add_option("--json", c->json,
+                  "write the results as JSON (docs/json.md: every run of the matrix); - is "
+                  "standard output");
   cmd->add_option("--junit", c->junit,
                   "write JUnit XML: one testcase per configuration x stall pattern run");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });

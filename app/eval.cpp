@@ -18,6 +18,7 @@ struct EvalCli {
 };
 
 int run_eval(const EvalCli& c) {
+  check_distinct({{"--in", c.in}, {"--out", c.out}, {"--config", c.target.config}});
   const Loaded l = load(c.target);
   DutFactory make_dut;
   if (c.backend == "rtl") {
@@ -26,9 +27,11 @@ int run_eval(const EvalCli& c) {
              c.target.simulator != "verilator") {
     throw Error("--rtl, --rtl-plugin and --simulator need --backend rtl");
   }
-  const std::size_t rows = eval_csv(*l.model, make_dut, c.in, c.out, c.real);
-  fmt::print("{} output rows from {} ({} backend, {}) -> {}\n", rows, c.in, c.backend,
-             l.cfg.origin(), c.out);
+  OutputFile out(c.out);
+  const std::size_t rows = eval_csv(*l.model, make_dut, c.in, out.get(), c.real);
+  out.commit();
+  fmt::print(out.is_stdout() ? stderr : stdout, "{} output rows from {} ({} backend, {}) -> {}\n",
+             rows, c.in, c.backend, l.cfg.origin(), c.out);
   return 0;
 }
 
@@ -41,25 +44,31 @@ struct VectorsCli {
 };
 
 int run_vectors(const VectorsCli& c) {
+  check_distinct({{"--out", c.out}, {"--config", c.target.config}});
   const Loaded l = load(c.target);
   const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
   const auto& fields = l.model->inputs();
+  const std::uint64_t random = quick_cap(c.random, kQuickVectors);
   OutputFile file(c.out);
-  std::string text;
-  for (std::size_t i = 0; i < fields.size(); ++i) text += (i ? "," : "") + fields[i].name;
-  text += "\n";
+  std::string row;
+  for (std::size_t i = 0; i < fields.size(); ++i) row += (i ? "," : "") + fields[i].name;
+  fmt::print(file.get(), "{}\n", row);
+  // Row by row: memory does not grow with the number of vectors.
   std::vector<std::int64_t> v(fields.size());
   const std::uint64_t first = c.directed ? 0 : stimulus.directed_count();
-  const std::uint64_t last = stimulus.directed_count() + c.random;
+  const std::uint64_t last = stimulus.directed_count() + random;
   for (std::uint64_t index = first; index < last; ++index) {
     stimulus.vector(c.seed, index, v);
-    for (std::size_t i = 0; i < v.size(); ++i) text += fmt::format("{}{}", i ? "," : "", v[i]);
-    text += "\n";
+    row.clear();
+    for (std::size_t i = 0; i < v.size(); ++i)
+      fmt::format_to(std::back_inserter(row), "{}{}", i ? "," : "", v[i]);
+    row += "\n";
+    std::fputs(row.c_str(), file.get());
   }
-  std::fputs(text.c_str(), file.get());
   file.commit();
-  fmt::print("{} vectors ({} directed + {} random, seed {}) -> {}\n", last - first,
-             c.directed ? stimulus.directed_count() : 0, c.random, c.seed, c.out);
+  fmt::print(file.is_stdout() ? stderr : stdout,
+             "{} vectors ({} directed + {} random, seed {}) -> {}\n", last - first,
+             c.directed ? stimulus.directed_count() : 0, random, c.seed, c.out);
   return 0;
 }
 
@@ -76,7 +85,9 @@ void add_eval(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--in", c->in, "input CSV: header of input field names, one vector per row")
       ->required();
-  cmd->add_option("--out", c->out, "output CSV: header of output field names")->required();
+  cmd->add_option("--out", c->out,
+                  "output CSV: header of output field names (- is standard output)")
+      ->required();
   cmd->add_flag("--real", c->real, "values are reals instead of raw integers");
   cmd->callback([c, &action]() { action = [c]() { return run_eval(*c); }; });
 }
@@ -89,7 +100,8 @@ void add_vectors(CLI::App& app, Action& action) {
   add_count(*cmd, "--vectors", c->random, "random vectors after the directed ones", kMaxVectors);
   add_count(*cmd, "--seed", c->seed, "seed", UINT64_MAX);
   cmd->add_flag("!--no-directed", c->directed, "skip the directed corners");
-  cmd->add_option("--out", c->out, "output CSV (input of phongsim eval)")->required();
+  cmd->add_option("--out", c->out, "output CSV, the input of phongsim eval (- is standard output)")
+      ->required();
   cmd->callback([c, &action]() { action = [c]() { return run_vectors(*c); }; });
 }
 

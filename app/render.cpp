@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/json.h"
 #include "base/output_file.h"
 #include "sim/render/render.h"
 
@@ -25,45 +26,84 @@ struct RenderCli {
   bool quiet = false;
 };
 
+// Whether `path` lies inside `dir` (then it is a file of the render's set).
+std::optional<fs::path> inside(const fs::path& path, const fs::path& dir) {
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(fs::absolute(path), ec);
+  const fs::path d = fs::weakly_canonical(fs::absolute(dir), ec);
+  const fs::path rel = p.lexically_relative(d);
+  if (rel.empty() || *rel.begin() == ".." || rel == ".") return std::nullopt;
+  return rel;
+}
+
+nlohmann::ordered_json metrics_json(const ImageMetrics& m) {
+  return {{"colour_correctness", m.colour_correctness},
+          {"psnr_db", json_number(m.psnr)},
+          {"max_error", m.max_error},
+          {"pixels", m.pixels}};
+}
+
 int run(RenderCli c) {
   c.options.backend = parse_backend(c.backend);
   c.options.terms = parse_terms(c.terms);
   c.options.texture_filter = texmap::parse_filter(c.texture_filter);
-  std::optional<OutputFile> json;
-  if (!c.json.empty()) json.emplace(c.json);  // unwritable: fail before rendering
+  if (quick_mode()) {  // PHONGSIM_QUICK: small images (docs/cosim.md)
+    const bool analytic = c.options.scene == "shinyballs";
+    const int cap = analytic ? 16 : 96;
+    c.options.size = c.options.size == 0 ? cap : std::min(c.options.size, cap);
+    c.options.teapot_resolution = 3;
+    c.options.texture_size = std::min(c.options.texture_size, 64);
+  }
+  check_distinct(
+      {{"--json", c.json}, {"--unit-config", c.options.unit_config}, {"--scene", c.options.scene}});
+  // The files appear together when the render is done, or not at all; a --json inside the
+  // output directory is one of them. Both are checked before anything is rendered.
+  OutputSet set(c.out_dir, "", {});
+  const std::optional<fs::path> json_in_set =
+      c.json.empty() || c.json == "-" ? std::nullopt : inside(c.json, c.out_dir);
+  std::optional<JsonOutput> json;
+  if (!json_in_set) json.emplace(c.json);
+  std::FILE* const text = json && json->to_stdout() ? stderr : stdout;
   const RenderResult r = render(c.options, progress_line(c.quiet));
-  const auto files = write_render_outputs(r, c.out_dir);
-  fmt::print("{}: {} x {} pixels ({} object pixels), reference {} (float){}\n{}", r.scene,
+  set.rename(render_set_name(r), {render_set_name(r)});
+  const auto files = write_render_outputs(r, set);
+  nlohmann::ordered_json j = json_document("render");
+  j["scene"] = r.scene;
+  j["width"] = r.reference.image.width();
+  j["height"] = r.reference.image.height();
+  j["reference"] = r.reference.method;
+  j["terms"] = terms_name(c.options.terms);
+  j["texture_size"] = c.options.texture_size;
+  j["texture_filter"] = texmap::filter_name(c.options.texture_filter);
+  j["out"] = c.out_dir;
+  j["files"] = nlohmann::ordered_json::array();
+  for (const auto& f : files) j["files"].push_back((fs::path(c.out_dir) / f).string());
+  j["regions"] = nlohmann::ordered_json::array();
+  for (const auto& region : r.regions) j["regions"].push_back(region.first);
+  j["methods"] = nlohmann::ordered_json::array();
+  for (const MethodResult& m : r.results) {
+    nlohmann::ordered_json method{{"method", m.method}, {"backend", backend_name(m.backend)}};
+    method.update(metrics_json(m.metrics));
+    method["seconds"] = m.seconds;
+    method["cpu_seconds"] = m.cpu_seconds;
+    method["regions"] = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < r.regions.size() && i < m.region_metrics.size(); ++i) {
+      nlohmann::ordered_json region{{"region", r.regions[i].first}};
+      region.update(metrics_json(m.region_metrics[i]));
+      method["regions"].push_back(region);
+    }
+    j["methods"].push_back(method);
+  }
+  if (json_in_set) {
+    std::fputs((j.dump(2) + "\n").c_str(), set.add(*json_in_set).get());
+  }
+  set.commit();
+  if (json) json->write(j);
+  fmt::print(text, "{}: {} x {} pixels ({} object pixels), reference {} (float){}\n{}", r.scene,
              r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
              r.reference.method, r.settings, metrics_markdown(r));
-  fmt::print("wrote {} files to {} (grid: {})\n", files.size(), c.out_dir,
+  fmt::print(text, "wrote {} files to {} (grid: {})\n", files.size(), c.out_dir,
              (fs::path(c.out_dir) / (r.scene + "_grid.png")).string());
-  if (json) {
-    nlohmann::json j{{"scene", r.scene},
-                     {"width", r.reference.image.width()},
-                     {"height", r.reference.image.height()},
-                     {"reference", r.reference.method},
-                     {"terms", terms_name(c.options.terms)},
-                     {"texture_size", c.options.texture_size},
-                     {"texture_filter", texmap::filter_name(c.options.texture_filter)},
-                     {"files", nlohmann::json::array()},
-                     {"methods", nlohmann::json::array()}};
-    for (const auto& f : files) j["files"].push_back(f.string());
-    for (const MethodResult& m : r.results) {
-      j["methods"].push_back(
-          {{"method", m.method},
-           {"backend", backend_name(m.backend)},
-           {"colour_correctness", m.metrics.colour_correctness},
-           {"psnr_db",
-            std::isinf(m.metrics.psnr) ? nlohmann::json(nullptr) : nlohmann::json(m.metrics.psnr)},
-           {"max_error", m.metrics.max_error},
-           {"pixels", m.metrics.pixels},
-           {"seconds", m.seconds},
-           {"cpu_seconds", m.cpu_seconds}});
-    }
-    std::fputs((j.dump(2) + "\n").c_str(), json->get());
-    json->commit();
-  }
   return 0;
 }
 
@@ -86,28 +126,36 @@ void add_render(CLI::App& app, Action& action) {
   cmd->add_option("--backend", c->backend,
                   "auto (RTL where a method has a unit, else float), float, model, rtl")
       ->capture_default_str();
-  cmd->add_option("--size", c->options.size,
-                  "shinyballs: sphere radius in pixels (default 64); meshes: image width");
-  cmd->add_option("--teapot-resolution", c->options.teapot_resolution,
-                  "teapot: grid cells per patch side (default: about 3750 facets)");
+  add_int(*cmd, "--size", c->options.size,
+          "shinyballs: sphere radius in pixels (default 64, at most 340); meshes: image width "
+          "(default: the scene's)",
+          1, 2048);
+  add_int(*cmd, "--teapot-resolution", c->options.teapot_resolution,
+          "teapot: grid cells per patch side (default 8: 4032 facets, about Vlasic's 3750)", 1,
+          256);
   cmd->add_option("--reference", c->options.reference,
                   "reference method for metrics and difference images (default phong, "
                   "float)");
-  cmd->add_option("--scanline", c->options.scanline,
-                  "row of the scanline illumination plot (default: the middle)");
+  add_int(*cmd, "--scanline", c->options.scanline,
+          "row of the scanline illumination plot (default: the middle)", 0, 2047);
   cmd->add_option("--unit-config", c->options.unit_config,
                   "a configuration file replacing the built-in one of every unit method "
                   "of its pipeline");
   cmd->add_option("--terms", c->terms,
                   "lighting terms: all, or specular only (Vlasic's Table 6.1 compares those)")
       ->capture_default_str();
-  cmd->add_option("--texture-size", c->options.texture_size,
-                  "texture methods: texels per side (0: the exact texture function)")
+  add_int(*cmd, "--texture-size", c->options.texture_size,
+          "texture methods: texels per side (0: the exact texture function)", 0,
+          texmap::kMaxTextureSize)
       ->capture_default_str();
   cmd->add_option("--texture-filter", c->texture_filter, "texture methods: nearest or bilinear")
       ->capture_default_str();
-  cmd->add_option("--out", c->out_dir, "output directory")->capture_default_str();
-  cmd->add_option("--json", c->json, "write a JSON summary here");
+  cmd->add_option("--out", c->out_dir,
+                  "output directory (created; this scene's files there are replaced as a set)")
+      ->capture_default_str();
+  cmd->add_option("--json", c->json,
+                  "write the results as JSON (docs/json.md: files, metrics, per-sphere metrics); "
+                  "- is standard output");
   cmd->add_flag("--no-build", c->options.no_build,
                 "fail instead of Verilating a configuration that is not built yet");
   cmd->add_flag("--quiet", c->quiet, "no progress display");

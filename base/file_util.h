@@ -24,9 +24,13 @@ inline std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
-// The file's bytes; Error("<path>: cannot read <what>") when it cannot be opened or read, e.g.
-// read_file(path, "scene file").
+// The file's bytes; Error("<path>: cannot read <what>") when it cannot be opened or read (a
+// directory included), e.g. read_file(path, "scene file").
 inline std::string read_file(const std::filesystem::path& path, std::string_view what) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw Error(fmt::format("{}: cannot read {} (it is a directory)", path.string(), what));
+  }
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
   if (in) s << in.rdbuf();

@@ -1,8 +1,10 @@
-// Running helper programs (python for -G parameters, cmake for on-demand Verilator builds)
-// without a shell, so paths with spaces or quotes need no escaping.
+// Running helper programs (python for figures, cmake for on-demand Verilator builds, Yosys,
+// nextpnr) without a shell, so paths with spaces or quotes need no escaping. Each runs in a
+// process group of its own that phongsim stops when a signal ends it (base/temporaries.h).
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,5 +19,13 @@ struct ProcessResult {
 // otherwise it is captured into the result.
 ProcessResult run_process(const std::vector<std::string>& argv,
                           const std::filesystem::path& log = {});
+
+// Called about five times a second while a helper program runs — its argv, the seconds since it
+// started, and its log (empty when captured) — and once more with seconds < 0 when it ended.
+// The CLI installs one that shows progress on a terminal; nothing is called when none is
+// installed.
+using WaitHook = std::function<void(const std::vector<std::string>& argv, double seconds,
+                                    const std::filesystem::path& log)>;
+void set_wait_hook(WaitHook hook);
 
 }  // namespace phongsim

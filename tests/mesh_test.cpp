@@ -24,6 +24,7 @@
 #include "base/vec3.h"
 #include "sim/render/mesh.h"
 #include "sim/render/scene.h"
+#include "sim/render/teapot.h"
 
 namespace {
 

@@ -54,26 +54,14 @@ TEST(StallPatternParse, AcceptsTheGrammarAndStrRoundTrips) {
 }
 
 TEST(StallPatternParse, RejectsSpecsOutsideTheGrammar) {
-  const char* bad[] = {"",
-                       "periodic:",
-                       "periodic:12",
-                       "periodic:000",
-                       "random:1",
-                       "random:-0.1",
-                       "random:x",
-                       "long:0",
-                       "long:5:0",
-                       "bogus",
-                       "none:",
-                       "random:",
-                       "random:1.5",
-                       "random:nan",
-                       "long:5:",
-                       "long:-1",
-                       "long:5:10:1",
-                       "long:x",
-                       "periodic:1a",
-                       "NONE"};
+  const char* bad[] = {"", "periodic:", "periodic:12", "periodic:000", "random:1", "random:-0.1",
+                       "random:x", "long:0", "long:5:0", "bogus", "none:", "random:", "random:1.5",
+                       "random:nan", "long:5:", "long:-1", "long:5:10:1", "long:x", "periodic:1a",
+                       "NONE",
+                       // Bounded (docs/cosim.md): STALL + RUN that wraps to 0 used to divide by
+                       // zero (SIGFPE); a stall of 10^12 cycles never ended.
+                       "long:18446744073709551615:1", "long:1:18446744073709551615",
+                       "long:1000000000000", "long:1000001", "long:1:1000001", "random:0.995"};
   for (const char* spec : bad) {
     SCOPED_TRACE(spec);
     try {
@@ -91,7 +79,7 @@ TEST(StallPatternParse, RejectsSpecsOutsideTheGrammar) {
 }
 
 TEST(StallPatternParse, ErrorsSayWhatIsWrong) {
-  const auto message = [](const char* spec) {
+  const auto message = [](const std::string& spec) {
     try {
       (void)StallPattern::parse(spec);
     } catch (const Error& e) {
@@ -104,9 +92,19 @@ TEST(StallPatternParse, ErrorsSayWhatIsWrong) {
             "stall pattern 'periodic:12': BITS must be a non-empty string of 0 and 1" + tail);
   EXPECT_EQ(message("periodic:000"),
             "stall pattern 'periodic:000': BITS must contain at least one 1" + tail);
-  EXPECT_EQ(message("random:1"), "stall pattern 'random:1': P must be a number in [0, 1)" + tail);
-  EXPECT_EQ(message("long:0"), "stall pattern 'long:0': STALL must be a positive integer" + tail);
-  EXPECT_EQ(message("long:5:0"), "stall pattern 'long:5:0': RUN must be a positive integer" + tail);
+  EXPECT_EQ(message("random:1"),
+            "stall pattern 'random:1': P must be a number in [0, 0.99]" + tail);
+  EXPECT_EQ(message("long:0"),
+            "stall pattern 'long:0': STALL must be an integer in 1..1000000" + tail);
+  EXPECT_EQ(message("long:5:0"),
+            "stall pattern 'long:5:0': RUN must be an integer in 1..1000000" + tail);
+  EXPECT_EQ(message("long:18446744073709551615:1"),
+            "stall pattern 'long:18446744073709551615:1': STALL must be an integer in "
+            "1..1000000" +
+                tail);
+  EXPECT_EQ(message("periodic:" + std::string(4097, '1')),
+            "stall pattern 'periodic:" + std::string(4097, '1') +
+                "': BITS has 4097 bits, at most 4096" + tail);
   EXPECT_EQ(message("bogus"), "stall pattern 'bogus': unknown pattern" + tail);
 }
 
@@ -115,6 +113,18 @@ TEST(StallPatternParse, ErrorsSayWhatIsWrong) {
 // empty rest after "long:" as "no numbers given" and returns long:100:400.
 TEST(StallPatternParse, RejectsLongWithEmptyArgument) {
   EXPECT_THROW((void)StallPattern::parse("long:"), Error);
+}
+
+// The largest accepted patterns still cycle (no wrap in STALL + RUN) and stay bounded.
+TEST(StallPatternParse, LargestPatternsAreWellDefined) {
+  const StallPattern p = StallPattern::parse("long:1000000:1000000");
+  EXPECT_EQ(p.longest_stall(), 1000000u);
+  Rng rng(1, phongsim::kSinkStream, 0);
+  EXPECT_TRUE(p.active(999999, rng));
+  EXPECT_FALSE(p.active(1000000, rng));
+  EXPECT_TRUE(p.active(2000000, rng));
+  EXPECT_NO_THROW((void)StallPattern::parse("random:0.99"));
+  EXPECT_NO_THROW((void)StallPattern::parse("periodic:" + std::string(4096, '1')));
 }
 
 TEST(StallPatternActive, NoneIsAlwaysActive) {

@@ -21,6 +21,10 @@ std::string value_text(const Field& f, std::int64_t raw) {
 
 std::string field_head(const Field& f) { return fmt::format("{:<8} {:>7}", f.name, f.fmt.str()); }
 
+FieldValue field_value(const Field& f, std::int64_t raw) {
+  return {f.name, f.fmt.str(), raw, fx::to_real(raw, f.fmt)};
+}
+
 // Output fields as a table with expected and got side by side, differing fields marked.
 std::string output_table(const std::vector<Field>& fields, const std::int64_t* want,
                          std::span<const std::int64_t> got) {
@@ -80,10 +84,13 @@ class Scoreboard {
 
   // Checks a batch (see HarnessHooks::check); on a failure fills kind/report.
   std::size_t check(std::span<const std::uint64_t> accepted, std::span<const std::int64_t> outputs,
-                    std::span<const std::uint64_t> cycles, std::string& kind, std::string& report) {
+                    std::span<const std::uint64_t> cycles, std::string& kind, std::string& report,
+                    CosimFailure& detail) {
     accept_.insert(accept_.end(), accepted.begin(), accepted.end());
     for (std::size_t j = 0; j < cycles.size(); ++j) {
-      if (!check_one(outputs.subspan(j * n_out_, n_out_), cycles[j], kind, report)) return j;
+      if (!check_one(outputs.subspan(j * n_out_, n_out_), cycles[j], kind, report, detail)) {
+        return j;
+      }
     }
     compact();
     return cycles.size();
@@ -128,13 +135,19 @@ class Scoreboard {
     }
   }
 
+  // Compares one RTL output; on a failure fills kind/report/detail and returns false.
   bool check_one(std::span<const std::int64_t> got, std::uint64_t cycle, std::string& kind,
-                 std::string& report) {
+                 std::string& report, CosimFailure& detail) {
     const auto& outs = model_.outputs();
     const std::size_t n = outs.size();
     drop_finished(cycle);
     if (front_ >= accepted() || accept_[front_ - base_] >= cycle) {
       kind = "unexpected output";
+      detail.cycle = cycle;
+      for (std::size_t i = 0; i < n; ++i) {
+        detail.outputs.push_back(
+            {outs[i].name, outs[i].fmt.str(), std::nullopt, field_value(outs[i], got[i]), true});
+      }
       report = fmt::format(
           "UNEXPECTED OUTPUT at cycle {}: the model expects no output now (all {} checked "
           "outputs matched); duplicated or extra output\n  got:\n",
@@ -161,6 +174,15 @@ class Scoreboard {
       }
       report += output_table(outs, want, got);
       failing_index_ = index(front_);
+      detail.cycle = cycle;
+      detail.vector = index(front_);
+      detail.output = seen_;
+      detail.outputs_of_vector = owed(front_);
+      for (std::size_t i = 0; i < ins.size(); ++i) detail.inputs.push_back(field_value(ins[i], in[i]));
+      for (std::size_t i = 0; i < n; ++i) {
+        detail.outputs.push_back({outs[i].name, outs[i].fmt.str(), field_value(outs[i], want[i]),
+                                  field_value(outs[i], got[i]), want[i] != got[i]});
+      }
       return false;
     }
     if (seen_ == 0) {
@@ -230,6 +252,7 @@ struct Phase {
   HarnessResult harness;
   std::string kind;
   std::string report;
+  CosimFailure detail;
   std::uint64_t latency_min = 0;
   std::uint64_t latency_max = 0;
   std::optional<std::uint64_t> failing_index;
@@ -237,15 +260,24 @@ struct Phase {
 
 // Runs vectors [first, first + count) (or the one in `only`) through a fresh DUT.
 Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, const CosimOptions& o,
-                const HarnessOptions& ho, std::uint64_t first, std::uint64_t count) {
+                const HarnessOptions& ho, std::uint64_t first, std::uint64_t count,
+                const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) {
   Phase phase;
   model.reset();
   Scoreboard board(model, stimulus, o.seed, first, count);
   HarnessHooks hooks;
   hooks.next_inputs = [&](std::uint64_t pos) { return board.next(pos); };
+  std::uint64_t done = 0, reported = 0;
   hooks.check = [&](std::span<const std::uint64_t> accepted, std::span<const std::int64_t> out,
                     std::span<const std::uint64_t> cycles) {
-    return board.check(accepted, out, cycles, phase.kind, phase.report);
+    if (progress) {
+      done += accepted.size();
+      if (done - reported >= 4096) {
+        progress(done, count);
+        reported = done;
+      }
+    }
+    return board.check(accepted, out, cycles, phase.kind, phase.report, phase.detail);
   };
   phase.harness = run_harness(dut, model.inputs().size(), model.outputs().size(), ho, hooks);
   if (phase.harness.reason == StopReason::deadlock) {
@@ -256,12 +288,19 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, con
       phase.report +=
           fmt::format("  waiting for in_ready: vector {}\n", first + *phase.harness.waiting_input);
     }
+    phase.detail.vector = board.next_due();
   } else if (phase.harness.reason == StopReason::protocol) {
     phase.kind = "protocol";
     phase.report = fmt::format("HANDSHAKE VIOLATION: {}\n", phase.harness.message);
     if (const auto due = board.next_due()) {
       phase.report += fmt::format("  the offending output is the one due for vector {}\n", *due);
     }
+    phase.detail.vector = board.next_due();
+  }
+  if (!phase.kind.empty()) {
+    phase.detail.kind = phase.kind;
+    phase.detail.message = phase.harness.message;
+    if (phase.detail.cycle == 0) phase.detail.cycle = phase.harness.cycles - 1;
   }
   phase.latency_min = board.latency_min();
   phase.latency_max = board.latency_max();
@@ -309,7 +348,8 @@ std::vector<Shard> shards_of(const CosimSubject& s, const CosimOptions& o, std::
 std::mutex dut_mutex;
 
 Phase run_shard(const CosimSubject& s, PipelineModel& model, const Stimulus& stimulus,
-                const CosimOptions& o, HarnessOptions ho, const Shard& shard) {
+                const CosimOptions& o, HarnessOptions ho, const Shard& shard,
+                const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) {
   ho.stall_stream = shard.stream;
   if (shard.stream != 0) ho.trace_path.clear();  // a passing run's waveform: the first cycles
   DutPtr dut;
@@ -317,7 +357,7 @@ Phase run_shard(const CosimSubject& s, PipelineModel& model, const Stimulus& sti
     const std::lock_guard lock(dut_mutex);
     dut = s.make_dut();
   }
-  Phase p = run_phase(model, *dut, stimulus, o, ho, shard.first, shard.count);
+  Phase p = run_phase(model, *dut, stimulus, o, ho, shard.first, shard.count, progress);
   const std::lock_guard lock(dut_mutex);
   dut.reset();
   return p;
@@ -336,9 +376,24 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
   std::vector<Phase> phases(shards.size());
   std::size_t failed = shards.size();
   const std::size_t jobs = std::min<std::size_t>(std::max(o.jobs, 1U), shards.size());
+  // Progress (inputs accepted of all shards'): within a shard when one worker runs them, else
+  // as shards finish.
+  std::uint64_t total = 0, finished = 0;
+  for (const Shard& sh : shards) total += sh.count;
+  std::mutex progress_mutex;
+  const auto shard_done = [&](const Shard& sh) {
+    if (!o.progress) return;
+    const std::lock_guard lock(progress_mutex);
+    finished += sh.count;
+    o.progress(finished, total);
+  };
   if (jobs <= 1) {
     for (std::size_t k = 0; k < shards.size() && failed == shards.size(); ++k) {
-      phases[k] = run_shard(s, s.model, s.stimulus, o, ho, shards[k]);
+      const auto within = [&](std::uint64_t done, std::uint64_t) {
+        if (o.progress) o.progress(finished + done, total);
+      };
+      phases[k] = run_shard(s, s.model, s.stimulus, o, ho, shards[k], within);
+      shard_done(shards[k]);
       if (!phases[k].kind.empty()) failed = k;
     }
   } else {
@@ -358,6 +413,7 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
         try {
           for (std::size_t k = next++; k < shards.size() && k < first_failure; k = next++) {
             phases[k] = run_shard(s, *models[w], stimuli[w], o, ho, shards[k]);
+            shard_done(shards[k]);
             if (phases[k].kind.empty()) continue;
             std::size_t f = first_failure;
             while (k < f && !first_failure.compare_exchange_weak(f, k)) {
@@ -485,6 +541,7 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
     const std::uint64_t fail_cycle = main.harness.cycles - 1;
     r.failure = main.report + failure_context(r, options.only_index, main.failing_index,
                                               subject.independent_vectors);
+    r.failure_detail = main.detail;
     if (!options.trace_path.empty()) {  // same run again, waveform only around the failure
       ho.trace_from = fail_cycle > options.trace_window ? fail_cycle - options.trace_window : 0;
       ho.trace_to = fail_cycle + 1;
@@ -517,7 +574,10 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
       r.failure =
           m.report + "  (in the stall-free measurement run)\n" +
           failure_context(as_run, std::nullopt, m.failing_index, subject.independent_vectors);
+      r.failure_detail = m.detail;
+      r.failure_detail->in_measurement_run = true;
     } else if (m.harness.outputs > 1) {
+      r.measured = true;
       r.throughput =
           static_cast<double>(m.harness.outputs - 1) /
           static_cast<double>(m.harness.last_output_cycle - m.harness.first_output_cycle);

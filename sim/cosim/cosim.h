@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "model/config.h"
 #include "model/pipeline.h"
@@ -29,6 +30,40 @@ struct CosimOptions {
   std::uint64_t timeout = 0;                // deadlock timeout in cycles; 0 = harness default
   std::uint64_t measure_vectors = 1000;     // stall-free run that measures throughput/latency
   unsigned jobs = 1;  // workers sharing the main run's shards (CosimSubject::shard_vectors)
+  // Called now and then during the main run with (inputs accepted, inputs in total).
+  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+};
+
+// One field's value in a failure: its raw integer and the real value it stands for.
+struct FieldValue {
+  std::string name;
+  std::string format;  // "S1.10"
+  std::int64_t raw = 0;
+  double real = 0;
+};
+
+// One output field of the failing output: what the model expected (absent for an output nobody
+// owed) and what the RTL gave.
+struct FieldComparison {
+  std::string name;
+  std::string format;
+  std::optional<FieldValue> expected;
+  std::optional<FieldValue> got;
+  bool differs = false;
+};
+
+// The first failure as data — the same facts as the text report, for JSON (docs/json.md).
+struct CosimFailure {
+  std::string kind;                      // "mismatch", "unexpected output", "deadlock", "protocol"
+  std::uint64_t cycle = 0;               // the cycle it was detected in
+  std::optional<std::uint64_t> vector;   // mismatch: the vector owning the output; deadlock,
+                                         // protocol: the vector owing the next output
+  std::optional<std::uint64_t> output;   // mismatch: which of that vector's outputs (0-based)
+  std::uint64_t outputs_of_vector = 0;   // mismatch: how many outputs that vector has
+  std::vector<FieldValue> inputs;        // mismatch: the vector's inputs
+  std::vector<FieldComparison> outputs;  // mismatch, unexpected output: per output field
+  std::string message;                   // the harness's words (deadlock, protocol)
+  bool in_measurement_run = false;       // found by the stall-free measurement run
 };
 
 struct CosimReport {
@@ -44,14 +79,16 @@ struct CosimReport {
   std::uint64_t outputs = 0;   // outputs compared in the main run
   std::uint64_t mismatches = 0;
   std::uint64_t cycles = 0;  // main run
-  // From the stall-free measurement run (0 when it did not run).
+  // From the stall-free measurement run (0 when it did not run: measured false).
+  bool measured = false;
   double throughput = 0.0;  // outputs per clock in steady state
   std::uint64_t latency_min = 0;
   std::uint64_t latency_max = 0;
   bool passed = false;
-  std::string failure_kind;   // "", "mismatch", "unexpected output", "deadlock", "protocol"
-  std::string failure;        // multi-line first-failure report
-  std::string trace_written;  // waveform path, when one was written
+  std::string failure_kind;  // "", "mismatch", "unexpected output", "deadlock", "protocol"
+  std::string failure;       // multi-line first-failure report
+  std::optional<CosimFailure> failure_detail;  // the same as data
+  std::string trace_written;                   // waveform path, when one was written
 
   [[nodiscard]] std::string summary() const;  // one line
 };

@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "base/error.h"
-#include "base/output_file.h"
 #include "base/text.h"
 #include "sim/cosim/harness.h"
 
@@ -62,91 +61,117 @@ std::int64_t parse_real(std::string_view text, const Field& f, const std::string
   return static_cast<std::int64_t>(q);
 }
 
-// All input vectors of the file, flattened in model inputs() order.
-std::vector<std::int64_t> read_vectors(const std::filesystem::path& path,
-                                       const std::vector<Field>& fields, bool real) {
-  std::ifstream in(path);
-  if (!in) throw Error(fmt::format("{}: cannot read input vectors", path.string()));
-  std::vector<std::int64_t> values;
-  std::vector<std::size_t> column_of_field;  // field i is in column column_of_field[i]
-  std::size_t columns = 0;
-  std::string line;
-  for (int line_no = 1; std::getline(in, line); ++line_no) {
-    const auto content = trim(line);
-    if (content.empty() || content.front() == '#') continue;
-    const auto cells = split_csv(content);
-    const std::string where_line = fmt::format("{}:{}", path.string(), line_no);
-    if (columns == 0) {  // header
-      columns = cells.size();
-      for (const auto& c : cells) {
-        if (std::none_of(fields.begin(), fields.end(),
-                         [&](const Field& f) { return f.name == c; })) {
-          throw Error(fmt::format("{}: unknown column '{}'", where_line, c));
-        }
-      }
-      for (const auto& f : fields) {
-        const auto it = std::find(cells.begin(), cells.end(), f.name);
-        if (it == cells.end())
-          throw Error(fmt::format("{}: missing column '{}'", where_line, f.name));
-        if (std::find(it + 1, cells.end(), f.name) != cells.end()) {
-          throw Error(fmt::format("{}: column '{}' appears twice", where_line, f.name));
-        }
-        column_of_field.push_back(static_cast<std::size_t>(it - cells.begin()));
-      }
-      continue;
+// The input vectors of a file, one at a time, in model inputs() order.
+class VectorReader {
+ public:
+  VectorReader(const std::filesystem::path& path, const std::vector<Field>& fields, bool real)
+      : path_(path), in_(path), fields_(fields), real_(real) {
+    std::error_code ec;
+    if (!in_ || std::filesystem::is_directory(path, ec)) {
+      throw Error(fmt::format("{}: cannot read input vectors", path.string()));
     }
-    if (cells.size() != columns) {
-      throw Error(fmt::format("{}: {} values, but the header has {} columns", where_line,
-                              cells.size(), columns));
+    if (!next_cells()) throw Error(fmt::format("{}: no header row", path.string()));
+    const std::string where_line = fmt::format("{}:{}", path_.string(), line_no_);
+    columns_ = cells_.size();
+    for (const auto& c : cells_) {
+      if (std::none_of(fields.begin(), fields.end(), [&](const Field& f) { return f.name == c; })) {
+        throw Error(fmt::format("{}: unknown column '{}'", where_line, c));
+      }
     }
-    for (std::size_t i = 0; i < fields.size(); ++i) {
-      const auto where = fmt::format("{}: column '{}'", where_line, fields[i].name);
-      const auto cell = cells[column_of_field[i]];
-      values.push_back(real ? parse_real(cell, fields[i], where)
-                            : parse_raw(cell, fields[i], where));
+    for (const auto& f : fields) {
+      const auto it = std::find(cells_.begin(), cells_.end(), f.name);
+      if (it == cells_.end())
+        throw Error(fmt::format("{}: missing column '{}'", where_line, f.name));
+      if (std::find(it + 1, cells_.end(), f.name) != cells_.end()) {
+        throw Error(fmt::format("{}: column '{}' appears twice", where_line, f.name));
+      }
+      column_of_field_.push_back(static_cast<std::size_t>(it - cells_.begin()));
     }
   }
-  if (columns == 0) throw Error(fmt::format("{}: no header row", path.string()));
-  return values;
-}
+
+  // Fills `v` with the next vector; false at the end of the file.
+  bool next(std::span<std::int64_t> v) {
+    if (!next_cells()) return false;
+    const std::string where_line = fmt::format("{}:{}", path_.string(), line_no_);
+    if (cells_.size() != columns_) {
+      throw Error(fmt::format("{}: {} values, but the header has {} columns", where_line,
+                              cells_.size(), columns_));
+    }
+    for (std::size_t i = 0; i < fields_.size(); ++i) {
+      const auto where = fmt::format("{}: column '{}'", where_line, fields_[i].name);
+      const auto cell = cells_[column_of_field_[i]];
+      v[i] = real_ ? parse_real(cell, fields_[i], where) : parse_raw(cell, fields_[i], where);
+    }
+    return true;
+  }
+
+ private:
+  // The next line with content, split into cells; false at the end of the file.
+  bool next_cells() {
+    while (std::getline(in_, line_)) {
+      ++line_no_;
+      const auto content = trim(line_);
+      if (content.empty() || content.front() == '#') continue;
+      cells_ = split_csv(content);
+      return true;
+    }
+    if (in_.bad()) throw Error(fmt::format("{}: cannot read input vectors", path_.string()));
+    return false;
+  }
+
+  std::filesystem::path path_;
+  std::ifstream in_;
+  const std::vector<Field>& fields_;
+  bool real_;
+  std::string line_;
+  std::vector<std::string_view> cells_;       // views into line_
+  std::vector<std::size_t> column_of_field_;  // field i is in column column_of_field_[i]
+  std::size_t columns_ = 0;
+  int line_no_ = 0;
+};
 
 }  // namespace
 
 std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
-                     const std::filesystem::path& in, const std::filesystem::path& out, bool real) {
+                     const std::filesystem::path& in, std::FILE* out, bool real) {
   const auto& ins = model.inputs();
   const auto& outs = model.outputs();
-  const std::vector<std::int64_t> vectors = read_vectors(in, ins, real);
-  const std::size_t count = vectors.size() / ins.size();
-  OutputFile file(out);
+  VectorReader reader(in, ins, real);
 
-  std::vector<std::int64_t> results;
+  std::string header;
+  for (std::size_t i = 0; i < outs.size(); ++i) header += (i ? "," : "") + outs[i].name;
+  fmt::print(out, "{}\n", header);
+  std::size_t rows = 0;
+  std::string row;
+  const auto write_row = [&](std::span<const std::int64_t> o) {
+    row.clear();
+    for (std::size_t i = 0; i < outs.size(); ++i) {
+      if (i > 0) row += ",";
+      row += real ? fmt::format("{}", fx::to_real(o[i], outs[i].fmt)) : std::to_string(o[i]);
+    }
+    row += "\n";
+    std::fputs(row.c_str(), out);
+    ++rows;
+  };
+  std::vector<std::int64_t> vector(ins.size());
   if (!make_dut) {
     model.reset();
-    (void)model.eval_batch(std::span(vectors).first(count * ins.size()), results);
+    std::vector<std::int64_t> results;
+    while (reader.next(vector)) {
+      results.clear();
+      model.eval(vector, results);
+      for (std::size_t at = 0; at < results.size(); at += outs.size()) {
+        write_row(std::span(results).subspan(at, outs.size()));
+      }
+    }
   } else {
     DutPtr dut = make_dut();
-    const HarnessResult r = stream_vectors(*dut, ins.size(), outs.size(), vectors,
-                                           [&](std::span<const std::int64_t> o) {
-                                             results.insert(results.end(), o.begin(), o.end());
-                                           });
+    const HarnessResult r = stream_vectors(
+        *dut, ins.size(), outs.size(), [&](std::span<std::int64_t> v) { return reader.next(v); },
+        write_row);
     if (r.reason != StopReason::finished) throw Error("RTL evaluation failed: " + r.message);
   }
-
-  std::string text;
-  for (std::size_t i = 0; i < outs.size(); ++i) text += (i ? "," : "") + outs[i].name;
-  text += "\n";
-  for (std::size_t row = 0; row < results.size() / outs.size(); ++row) {
-    for (std::size_t i = 0; i < outs.size(); ++i) {
-      const std::int64_t raw = results[row * outs.size() + i];
-      if (i > 0) text += ",";
-      text += real ? fmt::format("{}", fx::to_real(raw, outs[i].fmt)) : std::to_string(raw);
-    }
-    text += "\n";
-  }
-  std::fputs(text.c_str(), file.get());
-  file.commit();
-  return results.size() / outs.size();
+  return rows;
 }
 
 }  // namespace phongsim

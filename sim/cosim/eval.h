@@ -8,8 +8,12 @@
 // Output: a header row of the output fields, one row per output transaction in order (for
 // one-output-per-vector pipelines such as LIRP, row i belongs to input row i); raw integers, or
 // reals with `real`.
+//
+// Both files are streamed: a row is read when the model or the RTL takes it and an output row
+// written when it comes out, so memory does not grow with the number of vectors.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 
 #include "model/pipeline.h"
@@ -17,9 +21,10 @@
 
 namespace phongsim {
 
-// Returns the number of output rows. `make_dut` empty means the model backend. Throws Error
-// naming file, line and column for malformed input; writes nothing then.
+// Writes the output CSV to `out` and returns the number of output rows. `make_dut` empty means
+// the model backend. Throws Error naming file, line and column for malformed input (what was
+// written to `out` by then is the caller's to discard: base/output_file.h does).
 std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
-                     const std::filesystem::path& in, const std::filesystem::path& out, bool real);
+                     const std::filesystem::path& in, std::FILE* out, bool real);
 
 }  // namespace phongsim

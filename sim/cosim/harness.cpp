@@ -178,4 +178,32 @@ HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t 
   return run_harness(dut, input_fields, output_fields, HarnessOptions{}, hooks);
 }
 
+HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
+                             const std::function<bool(std::span<std::int64_t>)>& next,
+                             const std::function<void(std::span<const std::int64_t>)>& on_output) {
+  // A batch at a time: the harness asks for more only once it has taken the previous batch.
+  constexpr std::size_t kBatch = 1024;
+  std::vector<std::int64_t> buffer(kBatch * input_fields);
+  HarnessHooks hooks;
+  hooks.next_inputs = [&](std::uint64_t) {
+    std::size_t n = 0;
+    bool more = true;
+    while (n < kBatch && (more = next(std::span(buffer).subspan(n * input_fields, input_fields)))) {
+      ++n;
+    }
+    InputBatch in;
+    in.vectors = std::span<const std::int64_t>(buffer).first(n * input_fields);
+    in.last = !more;
+    return in;
+  };
+  hooks.check = [&](std::span<const std::uint64_t>, std::span<const std::int64_t> outputs,
+                    std::span<const std::uint64_t> cycles) {
+    for (std::size_t i = 0; i < cycles.size(); ++i) {
+      on_output(outputs.subspan(i * output_fields, output_fields));
+    }
+    return cycles.size();
+  };
+  return run_harness(dut, input_fields, output_fields, HarnessOptions{}, hooks);
+}
+
 }  // namespace phongsim

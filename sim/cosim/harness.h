@@ -85,4 +85,10 @@ HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t 
                              std::span<const std::int64_t> vectors,
                              const std::function<void(std::span<const std::int64_t>)>& on_output);
 
+// The same with the inputs drawn one at a time from `next` (it fills one vector and returns
+// false when there are no more), so that a run's memory does not grow with its length.
+HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
+                             const std::function<bool(std::span<std::int64_t>)>& next,
+                             const std::function<void(std::span<const std::int64_t>)>& on_output);
+
 }  // namespace phongsim

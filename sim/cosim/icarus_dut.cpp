@@ -16,6 +16,7 @@
 
 #include "base/error.h"
 #include "base/process.h"
+#include "base/temporaries.h"
 
 namespace fs = std::filesystem;
 
@@ -95,15 +96,12 @@ std::string testbench(const RtlDesign& design, const std::vector<IcarusPort>& in
   return s;
 }
 
-// The compiled simulation; removes its directory when the last DUT and the factory are gone.
+// The compiled simulation; its directory goes when the last DUT and the factory are gone (or a
+// signal ends phongsim).
 struct IcarusBuild {
-  fs::path dir;
+  TempDir dir{"icarus"};
   std::vector<IcarusPort> in, out;
   std::string top;
-  ~IcarusBuild() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
 };
 
 std::vector<std::string> words_of(const std::string& text) {
@@ -144,7 +142,7 @@ class IcarusDut final : public RtlDut {
       dup2(from_child[1], 1);
       close(to_child[1]);
       close(from_child[0]);
-      const std::string vvp = (build_->dir / "sim.vvp").string();
+      const std::string vvp = (build_->dir.path() / "sim.vvp").string();
       execlp("vvp", "vvp", "-n", vvp.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
@@ -263,24 +261,17 @@ DutFactory icarus_duts(const RtlDesign& design, const PipelineModel& model, std:
   build->in = ports_of(design, model.inputs(), true);
   build->out = ports_of(design, model.outputs(), false);
   build->top = design.top;
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern =
-      (tmp != nullptr && *tmp != '\0' ? std::string(tmp) : "/tmp") + "/phongsim-icarus-XXXXXX";
-  std::vector<char> buf(pattern.begin(), pattern.end());
-  buf.push_back('\0');
-  if (mkdtemp(buf.data()) == nullptr) throw Error(fmt::format("cannot create {}", pattern));
-  build->dir = buf.data();
   {
-    std::ofstream tb(build->dir / "tb.sv");
+    std::ofstream tb(build->dir.path() / "tb.sv");
     tb << testbench(design, build->in, build->out);
   }
   std::vector<std::string> argv{"iverilog",
                                 "-g2012",
                                 "-o",
-                                (build->dir / "sim.vvp").string(),
+                                (build->dir.path() / "sim.vvp").string(),
                                 "-s",
                                 "phongsim_icarus_tb",
-                                (build->dir / "tb.sv").string()};
+                                (build->dir.path() / "tb.sv").string()};
   for (const auto& f : rtl_files(design.files)) argv.push_back(f.string());
   if (log != nullptr) fmt::print(log, "Compiling {} with Icarus Verilog\n", design.name);
   const ProcessResult r = run_process(argv);

@@ -17,6 +17,7 @@
 #include "base/file_util.h"
 #include "base/paths.h"
 #include "base/process.h"
+#include "base/temporaries.h"
 
 namespace phongsim {
 namespace fs = std::filesystem;
@@ -164,11 +165,14 @@ std::string info_field(const std::string& info, std::string_view field) {
   return "";
 }
 
-// A directory renamed into place only when complete: removed if the build fails first.
+// A directory renamed into place only when complete: removed if the build fails first, or
+// if a signal ends phongsim (base/temporaries.h; a stale one is swept at the next start).
 class TempDir {
  public:
   explicit TempDir(fs::path final_path)
-      : final_(std::move(final_path)), temp_(final_.string() + fmt::format(".tmp.{}", getpid())) {
+      : final_(std::move(final_path)),
+        temp_(final_.string() + temp_suffix()),
+        registration_(temp_) {
     fs::remove_all(temp_);
     fs::create_directories(temp_);
   }
@@ -190,6 +194,7 @@ class TempDir {
  private:
   fs::path final_;
   fs::path temp_;
+  TempRegistration registration_;
 };
 
 std::string cmake_list(const std::vector<std::string>& items) {
@@ -365,6 +370,7 @@ fs::path rtl_cache_dir() {
 std::map<std::string, int> check_ports(const RtlDesign& d, const PipelineModel& model) {
   const fs::path dir =
       fs::temp_directory_path() / fmt::format("phongsim-ports-{}-{}", getpid(), d.top);
+  const TempRegistration registration(dir);
   fs::remove_all(dir);
   const std::shared_ptr<void> cleanup(nullptr, [dir](void*) {
     std::error_code ec;

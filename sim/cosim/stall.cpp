@@ -37,14 +37,17 @@ StallPattern StallPattern::parse(std::string_view spec) {
       throw bad("BITS must be a non-empty string of 0 and 1");
     }
     if (rest.find('1') == std::string_view::npos) throw bad("BITS must contain at least one 1");
+    if (rest.size() > kMaxPeriodicBits) {
+      throw bad(fmt::format("BITS has {} bits, at most {}", rest.size(), kMaxPeriodicBits));
+    }
     p.kind_ = Kind::periodic;
     p.bits_ = rest;
     return p;
   }
   if (kind == "random") {
     if (!parse_number(rest, p.probability_) || !(p.probability_ >= 0.0) ||
-        !(p.probability_ < 1.0)) {
-      throw bad("P must be a number in [0, 1)");
+        !(p.probability_ <= kMaxStallProbability)) {
+      throw bad(fmt::format("P must be a number in [0, {}]", kMaxStallProbability));
     }
     p.kind_ = Kind::random;
     return p;
@@ -55,12 +58,13 @@ StallPattern StallPattern::parse(std::string_view spec) {
     p.run_ = 400;
     if (colon != std::string_view::npos) {
       const auto colon2 = rest.find(':');
-      if (!parse_number(rest.substr(0, colon2), p.stall_) || p.stall_ == 0) {
-        throw bad("STALL must be a positive integer");
+      if (!parse_number(rest.substr(0, colon2), p.stall_) || p.stall_ == 0 ||
+          p.stall_ > kMaxLongCycles) {
+        throw bad(fmt::format("STALL must be an integer in 1..{}", kMaxLongCycles));
       }
-      if (colon2 != std::string_view::npos &&
-          (!parse_number(rest.substr(colon2 + 1), p.run_) || p.run_ == 0)) {
-        throw bad("RUN must be a positive integer");
+      if (colon2 != std::string_view::npos && (!parse_number(rest.substr(colon2 + 1), p.run_) ||
+                                               p.run_ == 0 || p.run_ > kMaxLongCycles)) {
+        throw bad(fmt::format("RUN must be an integer in 1..{}", kMaxLongCycles));
       }
     }
     return p;

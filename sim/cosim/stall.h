@@ -2,9 +2,13 @@
 // both sides; "active" means the source offers its next transaction / the sink is ready.
 //
 //   none            always active (no stalls)
-//   periodic:BITS   cycle c uses BITS[c mod len]: '1' active, '0' stalled (e.g. 1110, 0001)
-//   random:P        stalled with probability P (0 <= P < 1) each cycle
-//   long[:S[:R]]    R active cycles, then S stalled cycles, repeating (default S=100, R=400)
+//   periodic:BITS   cycle c uses BITS[c mod len]: '1' active, '0' stalled (e.g. 1110, 0001);
+//                   at most kMaxPeriodicBits bits
+//   random:P        stalled with probability P (0 <= P <= kMaxStallProbability) each cycle
+//   long[:S[:R]]    R active cycles, then S stalled cycles, repeating (default S=100, R=400);
+//                   S and R in 1..kMaxLongCycles
+// The bounds keep every pattern's stalls short enough that a run ends: a stall is never longer
+// than a million cycles, a random one is a hundred cycles long on average at most.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +18,10 @@
 #include "base/rng.h"
 
 namespace phongsim {
+
+inline constexpr std::size_t kMaxPeriodicBits = 4096;
+inline constexpr double kMaxStallProbability = 0.99;
+inline constexpr std::uint64_t kMaxLongCycles = 1'000'000;
 
 class StallPattern {
  public:

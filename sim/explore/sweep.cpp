@@ -17,6 +17,7 @@
 #include "base/file_util.h"
 #include "base/output_file.h"
 #include "base/paths.h"
+#include "sim/explore/spec_file.h"
 #include "sim/pipelines/registry.h"
 #include "sim/render/plot.h"
 #include "sim/render/render.h"
@@ -25,30 +26,7 @@ namespace phongsim {
 namespace {
 
 namespace fs = std::filesystem;
-
-int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
-
-[[noreturn]] void fail_at(const fs::path& file, const toml::node& n, const std::string& what) {
-  throw Error(fmt::format("{}:{}: {}", file.string(), line_of(n), what));
-}
-
-toml::table parse_file(const fs::path& file) {
-  try {
-    return toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw Error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
-  }
-}
-
-// A path in a sweep file: relative to the file's directory, else to the source tree.
-fs::path resolve(const fs::path& file, const std::string& p) {
-  const fs::path near = file.parent_path() / p;
-  if (fs::exists(near)) return near;
-  const fs::path tree = data_root() / p;
-  if (fs::exists(tree)) return tree;
-  throw Error(fmt::format("{}: {} does not exist (looked next to the file and in the source tree)",
-                          file.string(), p));
-}
+using namespace explore;
 
 std::string literal(const toml::node& n) {
   std::ostringstream s;
@@ -62,45 +40,10 @@ std::string literal(const toml::node& n) {
   return s.str();
 }
 
-// The point's configuration: the base with the axis values replaced.
-std::string point_toml(const fs::path& base,
-                       const std::vector<std::pair<std::string, std::string>>& values,
-                       const std::string& header, const std::string& description) {
-  toml::table t = parse_file(base);
-  if (!description.empty()) t.insert_or_assign("description", description);
-  for (const auto& [key, value] : values) {
-    const auto dot = key.find('.');
-    const std::string section = key.substr(0, dot);
-    const std::string name = key.substr(dot + 1);
-    auto* table = t[section].as_table();
-    if (table == nullptr || !table->contains(name)) {
-      throw Error(fmt::format("{}: has no [{}] {} to sweep", base.string(), section, name));
-    }
-    const toml::table v = toml::parse("v = " + value);
-    table->insert_or_assign(name, *v.get("v"));
-  }
-  std::ostringstream s;
-  s << header << t << "\n";
-  return s.str();
-}
-
 std::string describe(const std::vector<std::pair<std::string, std::string>>& values) {
   std::string d;
   for (const auto& [k, v] : values) d += fmt::format("{}{}={}", d.empty() ? "" : ", ", k, v);
   return d;
-}
-
-// `method` on `scene` through the unit configuration `config` (model backend) against float
-// Phong.
-ImageMetrics scene_metrics(const std::string& scene, const std::string& method, int size,
-                           const fs::path& config) {
-  RenderOptions o;
-  o.scene = scene;
-  o.methods = {method};
-  o.backend = Backend::model;
-  o.size = size;
-  o.unit_config = config.string();
-  return render(o, [](std::string_view, std::uint64_t, std::uint64_t) {}).results.front().metrics;
 }
 
 std::string unquote(std::string v) {  // TOML string literals: "..." or '...'
@@ -116,7 +59,7 @@ SweepSpec load_sweep(const fs::path& file) {
   SweepSpec s;
   s.file = file;
   s.name = file.stem().string();
-  const toml::table t = parse_file(file);
+  const toml::table t = parse_toml(file);
   const std::set<std::string> known{"name",  "base",   "bases", "axes",
                                     "error", "scenes", "synth", "plot"};
   for (const auto& [k, v] : t) {
@@ -128,12 +71,12 @@ SweepSpec load_sweep(const fs::path& file) {
     }
   }
   if (const auto n = t["name"].value<std::string>()) s.name = *n;
-  if (const auto b = t["base"].value<std::string>()) s.bases.push_back(resolve(file, *b));
+  if (const auto b = t["base"].value<std::string>()) s.bases.push_back(resolve_path(file, *b));
   if (const auto* arr = t["bases"].as_array()) {
     for (const auto& b : *arr) {
       const auto p = b.value<std::string>();
       if (!p) fail_at(file, b, "bases: expected strings");
-      s.bases.push_back(resolve(file, *p));
+      s.bases.push_back(resolve_path(file, *p));
     }
   }
   if (s.bases.empty())
@@ -151,6 +94,11 @@ SweepSpec load_sweep(const fs::path& file) {
                             axis.key));
       }
       if (const auto* arr = v.as_array()) {
+        if (arr->size() > kMaxAxisValues) {
+          fail_at(file, v,
+                  fmt::format("axis '{}' has {} values, at most {}", axis.key, arr->size(),
+                              kMaxAxisValues));
+        }
         for (const auto& x : *arr) {
           const std::string lit = literal(x);
           if (lit.empty())
@@ -167,7 +115,11 @@ SweepSpec load_sweep(const fs::path& file) {
         }
         const auto lo = (*fr)[0].value<std::int64_t>().value();
         const auto hi = (*fr)[1].value<std::int64_t>().value();
-        const toml::table base = parse_file(s.bases.front());
+        if (lo < 0 || hi > 62) {
+          fail_at(file, v,
+                  fmt::format("axis '{}': fraction bits {}..{} outside 0..62", axis.key, lo, hi));
+        }
+        const toml::table base = parse_toml(s.bases.front());
         const auto fmt_text = base["format"][axis.key.substr(dot + 1)].value<std::string>();
         if (!fmt_text) {
           fail_at(
@@ -183,10 +135,26 @@ SweepSpec load_sweep(const fs::path& file) {
       s.axes.push_back(std::move(axis));
     }
   }
+  std::size_t points = s.bases.size();  // the grid, checked without overflowing
+  for (const SweepAxis& a : s.axes) {
+    if (points > kMaxSweepPoints) break;
+    points *= a.values.size();
+  }
+  if (points > kMaxSweepPoints) {
+    std::string sizes = fmt::format("{} base{}", s.bases.size(), s.bases.size() == 1 ? "" : "s");
+    for (const SweepAxis& a : s.axes) sizes += fmt::format(" x {}", a.values.size());
+    throw Error(fmt::format(
+        "{}: the grid has {} points ({}), at most {}", file.string(),
+        points > kMaxSweepPoints * 1000 ? std::string("too many") : std::to_string(points), sizes,
+        kMaxSweepPoints));
+  }
   if (const auto* e = t["error"].as_table()) {
     for (const auto& [k, v] : *e) {
       const auto n = v.value<std::int64_t>();
       if (k.str() == "samples" && n && *n >= 1) {
+        if (static_cast<std::uint64_t>(*n) > kMaxSweepSamples) {
+          fail_at(file, v, fmt::format("[error] samples = {}: at most {}", *n, kMaxSweepSamples));
+        }
         s.samples = static_cast<std::uint64_t>(*n);
       } else if (k.str() == "seed" && n && *n >= 0) {
         s.seed = static_cast<std::uint64_t>(*n);
@@ -299,6 +267,7 @@ PointResult evaluate_point(const SweepSpec& spec, const fs::path& config, std::s
   PointResult r;
   r.index = index;
   r.config = config.string();
+  r.config_hash = content_hash(read_file(config, "point configuration"));
   const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
   (void)make_model(pipeline, cfg);  // refuses a configuration the pipeline cannot take
   r.error = pipeline.float_error(cfg, spec.samples, spec.seed);
@@ -327,33 +296,44 @@ nlohmann::json to_json(const PointResult& r) {
   nlohmann::json psnr = nlohmann::json::object();
   for (const auto& [k, v] : r.psnr)
     psnr[k] = std::isinf(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
-  return {{"index", r.index},
-          {"config", r.config},
-          {"error",
-           {{"max_lsb", r.error.max_lsb},
-            {"mean_lsb", r.error.mean_lsb},
-            {"max_abs", r.error.max_abs},
-            {"samples", r.error.samples}}},
-          {"colour_correctness", cc},
-          {"psnr", psnr},
-          {"synth", r.synthesized ? nlohmann::json{{"cells", r.synth.cells},
-                                                   {"transistors", r.synth.transistors},
-                                                   {"lut4", r.synth.lut4},
-                                                   {"carry", r.synth.carry},
-                                                   {"mac16", r.synth.mac16},
-                                                   {"ff", r.synth.ff},
-                                                   {"fits", r.synth.fits},
-                                                   {"fmax_mhz", r.synth.fmax_mhz},
-                                                   {"cached", r.synth.cached}}
-                                  : nlohmann::json(nullptr)},
-          {"latency", r.latency},
-          {"seconds", r.seconds}};
+  const auto count = [](std::int64_t n) {
+    return n >= 0 ? nlohmann::json(n) : nlohmann::json(nullptr);
+  };
+  const bool ice40 = r.synth.lut4 >= 0;
+  return {
+      {"index", r.index},
+      {"config", r.config},
+      {"config_hash", r.config_hash},
+      {"error",
+       {{"max_lsb", r.error.max_lsb},
+        {"mean_lsb", r.error.mean_lsb},
+        {"max_abs", r.error.max_abs},
+        {"samples", r.error.samples}}},
+      {"colour_correctness", cc},
+      {"psnr", psnr},
+      // What was not computed (generic or iCE40 synthesis) is null.
+      {"synth", r.synthesized ? nlohmann::json{{"cells", count(r.synth.cells)},
+                                               {"transistors", count(r.synth.transistors)},
+                                               {"lut4", count(r.synth.lut4)},
+                                               {"carry", count(r.synth.carry)},
+                                               {"mac16", count(r.synth.mac16)},
+                                               {"ff", count(r.synth.ff)},
+                                               {"fits", ice40 ? nlohmann::json(r.synth.fits)
+                                                              : nlohmann::json(nullptr)},
+                                               {"fmax_mhz", ice40 && r.synth.fits
+                                                                ? nlohmann::json(r.synth.fmax_mhz)
+                                                                : nlohmann::json(nullptr)},
+                                               {"cached", r.synth.cached}}
+                              : nlohmann::json(nullptr)},
+      {"latency", r.latency},
+      {"seconds", r.seconds}};
 }
 
 PointResult from_json(const nlohmann::json& j) {
   PointResult r;
   r.index = j.at("index").get<std::size_t>();
   r.config = j.at("config").get<std::string>();
+  r.config_hash = j.value("config_hash", std::string());
   r.error.max_lsb = j.at("error").at("max_lsb").get<double>();
   r.error.mean_lsb = j.at("error").at("mean_lsb").get<double>();
   r.error.max_abs = j.at("error").at("max_abs").get<double>();
@@ -365,15 +345,19 @@ PointResult from_json(const nlohmann::json& j) {
   }
   if (!j.at("synth").is_null()) {
     const auto& s = j.at("synth");
+    const auto count = [&](const char* key) {
+      return s.at(key).is_null() ? std::int64_t{-1} : s.at(key).get<std::int64_t>();
+    };
     r.synthesized = true;
-    r.synth.cells = s.at("cells").get<std::int64_t>();
-    r.synth.transistors = s.at("transistors").get<std::int64_t>();
-    r.synth.lut4 = s.at("lut4").get<std::int64_t>();
-    r.synth.carry = s.at("carry").get<std::int64_t>();
-    r.synth.mac16 = s.at("mac16").get<std::int64_t>();
-    r.synth.ff = s.at("ff").get<std::int64_t>();
-    r.synth.fits = s.at("fits").get<bool>();
-    r.synth.fmax_mhz = s.at("fmax_mhz").get<double>();
+    r.synth.cells = count("cells");
+    r.synth.transistors = count("transistors");
+    r.synth.lut4 = count("lut4");
+    r.synth.carry = count("carry");
+    r.synth.mac16 = count("mac16");
+    r.synth.ff = count("ff");
+    r.synth.fits = s.at("fits").is_null() || s.at("fits").get<bool>();
+    r.synth.fmax_mhz =
+        s.at("fmax_mhz").is_null() ? (r.synth.fits ? -1.0 : 0.0) : s.at("fmax_mhz").get<double>();
     r.synth.cached = s.at("cached").get<bool>();
   }
   r.latency = j.at("latency").get<int>();
@@ -381,27 +365,29 @@ PointResult from_json(const nlohmann::json& j) {
   return r;
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  OutputFile f(path);
-  std::fputs(text.c_str(), f.get());
-  f.commit();
-}
-
-fs::path point_path(const fs::path& out, std::size_t i) {
-  return out / "points" / fmt::format("{:04}.toml", i);
-}
-fs::path result_path(const fs::path& out, std::size_t i) {
-  return out / "results" / fmt::format("{:04}.json", i);
-}
+fs::path point_file(std::size_t i) { return fs::path("points") / fmt::format("{:04}.toml", i); }
+fs::path result_file(std::size_t i) { return fs::path("results") / fmt::format("{:04}.json", i); }
 
 double area_of(const SweepSpec& spec, const PointResult& r) {
   if (!r.synthesized) return NAN;
-  if (spec.area == "transistors") return static_cast<double>(r.synth.transistors);
-  if (spec.area == "lut4") return static_cast<double>(r.synth.lut4);
-  return static_cast<double>(r.synth.cells);
+  const std::int64_t a = spec.area == "transistors" ? r.synth.transistors
+                         : spec.area == "lut4"      ? r.synth.lut4
+                                                    : r.synth.cells;
+  return a < 0 ? NAN : static_cast<double>(a);
+}
+
+// "lirp/default": the base's folder (the pipeline's, for configs/) and name.
+std::string base_name(const fs::path& base) {
+  return base.parent_path().filename().string() + "/" + base.stem().string();
 }
 
 }  // namespace
+
+std::string content_hash(const std::string& text) {
+  ContentHash h;
+  h.add(text);
+  return h.hex();
+}
 
 std::string point_result_json(const PointResult& r) { return to_json(r).dump(2) + "\n"; }
 
@@ -411,30 +397,46 @@ void write_point_result(const PointResult& r, const fs::path& path) {
 
 std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const fs::path& out) {
   const std::vector<SweepPoint> points = expand(spec);
-  std::error_code ec;
-  fs::create_directories(out / "points", ec);
-  fs::create_directories(out / "results", ec);
-  if (ec) throw Error(fmt::format("cannot create {}: {}", out.string(), ec.message()));
+  // The plan appears whole or not at all; planning again replaces the plan and what was merged
+  // from the old one.
+  OutputSet set(out, "sweep plan", {"sweep plan", "sweep merge"});
   const fs::path exe = fs::canonical("/proc/self/exe");
   const fs::path sweep = fs::absolute(spec.file);
+  const fs::path dir = fs::absolute(out);
   std::string jobs;
   std::string make = "# make -j<N> -f Makefile: every point of the sweep, then merge\nall:";
   std::string rules;
   for (const SweepPoint& p : points) {
-    write_text(point_path(out, p.index), p.toml);
+    std::fputs(p.toml.c_str(), set.add(point_file(p.index)).get());
     const std::string cmd =
         fmt::format("{} sweep point {} --sweep {} --index {} --out {}", exe.string(),
-                    fs::absolute(point_path(out, p.index)).string(), sweep.string(), p.index,
-                    fs::absolute(result_path(out, p.index)).string());
+                    (dir / point_file(p.index)).string(), sweep.string(), p.index,
+                    (dir / result_file(p.index)).string());
     jobs += cmd + "\n";
     make += fmt::format(" results/{:04}.json", p.index);
     rules += fmt::format("results/{:04}.json:\n\t{}\n", p.index, cmd);
   }
   make += fmt::format("\n\t{} sweep merge {} --out {}\n{}", exe.string(), sweep.string(),
-                      fs::absolute(out).string(), rules);
-  write_text(out / "jobs.txt", jobs);
-  write_text(out / "Makefile", make);
+                      dir.string(), rules);
+  std::fputs(jobs.c_str(), set.add("jobs.txt").get());
+  std::fputs(make.c_str(), set.add("Makefile").get());
+  set.commit();
+  std::error_code ec;
+  fs::create_directories(out / "results", ec);
+  if (ec)
+    throw Error(fmt::format("cannot create {}: {}", (out / "results").string(), ec.message()));
   return points;
+}
+
+bool on_pareto_front(const SweepSpec& spec, const PointResult& a,
+                     const std::vector<PointResult>& results) {
+  const double aa = area_of(spec, a);
+  if (std::isnan(aa)) return false;
+  return std::none_of(results.begin(), results.end(), [&](const PointResult& b) {
+    const double ab = area_of(spec, b);
+    return !std::isnan(ab) && ab <= aa && b.error.max_abs <= a.error.max_abs &&
+           (ab < aa || b.error.max_abs < a.error.max_abs);
+  });
 }
 
 std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out) {
@@ -442,14 +444,21 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
   std::vector<PointResult> results;
   for (const SweepPoint& p : points) {
     // The plan in `out` must be this sweep's: same point files, results made from them.
-    const fs::path pp = point_path(out, p.index);
-    if (read_file(pp) != p.toml) {
+    const fs::path pp = out / point_file(p.index);
+    if (!fs::exists(pp)) {
+      throw Error(
+          fmt::format("{} holds no plan of {} ({} is missing): run phongsim sweep plan "
+                      "first",
+                      out.string(), spec.file.string(), pp.string()));
+    }
+    const std::string planned = read_file(pp);
+    if (planned != p.toml) {
       throw Error(
           fmt::format("{} is not point {} of {} ({}): plan the sweep again into an empty "
                       "directory",
                       pp.string(), p.index, spec.file.string(), describe(p.values)));
     }
-    const fs::path rp = result_path(out, p.index);
+    const fs::path rp = out / result_file(p.index);
     if (!fs::exists(rp)) {
       throw Error(fmt::format("point {} ({}) has no result yet: {}", p.index, describe(p.values),
                               rp.string()));
@@ -465,44 +474,51 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
       throw Error(
           fmt::format("{} was computed from {}, not from {}", rp.string(), r.config, pp.string()));
     }
+    if (r.config_hash != content_hash(planned)) {
+      throw Error(
+          fmt::format("{} was computed from another version of {}: run point {} again (its line in "
+                      "jobs.txt)",
+                      rp.string(), pp.string(), p.index));
+    }
     r.values = p.values;
     r.base = p.base.string();
     results.push_back(std::move(r));
   }
-  // CSV.
-  std::string csv = "index,base";
+  const bool synth = spec.synth.generic || spec.synth.ice40;
+  std::vector<bool> pareto;
+  for (const PointResult& r : results) pareto.push_back(on_pareto_front(spec, r, results));
+
+  // CSV: what was not computed is an empty cell.
+  const auto count = [](std::int64_t n) { return n >= 0 ? std::to_string(n) : std::string(); };
+  std::string csv = "index,pipeline,base";
   for (const auto& a : spec.axes) csv += "," + a.key;
   csv += ",max_error_lsb,mean_error_lsb,max_error_abs";
   for (const auto& sc : spec.scenes) csv += fmt::format(",cc_{0},psnr_{0}", sc.scene);
-  csv += ",cells,transistors,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency\n";
-  for (const PointResult& r : results) {
-    csv += fmt::format("{},{}", r.index, fs::path(r.base).filename().string());
+  csv += ",cells,transistors,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency,pareto\n";
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const PointResult& r = results[k];
+    const Config cfg = Config::load(out / point_file(r.index));
+    csv += fmt::format("{},{},{}", r.index, cfg.pipeline(), base_name(r.base));
     for (const auto& v : r.values) csv += fmt::format(",{}", unquote(v.second));
     csv += fmt::format(",{:.6g},{:.6g},{:.6g}", r.error.max_lsb, r.error.mean_lsb, r.error.max_abs);
     for (std::size_t i = 0; i < r.colour_correctness.size(); ++i) {
-      csv += fmt::format(",{:.6f},{:.3f}", r.colour_correctness[i].second, r.psnr[i].second);
+      csv += fmt::format(",{:.6f},{}", r.colour_correctness[i].second,
+                         std::isfinite(r.psnr[i].second) ? fmt::format("{:.3f}", r.psnr[i].second)
+                                                         : std::string("inf"));
     }
-    if (r.synthesized) {
-      csv += fmt::format(",{},{},{},{},{},{},{},{:.2f}", r.synth.cells, r.synth.transistors,
-                         r.synth.lut4, r.synth.carry, r.synth.mac16, r.synth.ff,
-                         r.synth.fits ? 1 : 0, r.synth.fmax_mhz);
-    } else {
-      csv += ",,,,,,,,";
-    }
-    csv += fmt::format(",{}\n", r.latency);
+    const bool generic = r.synthesized && spec.synth.generic;
+    const bool ice40 = r.synthesized && spec.synth.ice40 && r.synth.lut4 >= 0;
+    csv += fmt::format(",{},{}", generic ? count(r.synth.cells) : "",
+                       generic ? count(r.synth.transistors) : "");
+    csv += fmt::format(",{},{},{},{},{},{}", ice40 ? count(r.synth.lut4) : "",
+                       ice40 ? count(r.synth.carry) : "", ice40 ? count(r.synth.mac16) : "",
+                       ice40 ? count(r.synth.ff) : "", ice40 ? (r.synth.fits ? "1" : "0") : "",
+                       ice40 && r.synth.fits ? fmt::format("{:.2f}", r.synth.fmax_mhz) : "");
+    csv += fmt::format(",{},{}\n", r.latency, synth ? (pareto[k] ? "1" : "0") : "");
   }
-  write_text(out / "sweep.csv", csv);
+  OutputSet set(out, "sweep merge", {"sweep merge"});
+  std::fputs(csv.c_str(), set.add("sweep.csv").get());
 
-  // Pareto front: no other point has both less (or equal) area and less (or equal) error.
-  const auto dominated = [&](const PointResult& a) {
-    const double aa = area_of(spec, a);
-    if (std::isnan(aa)) return false;
-    return std::any_of(results.begin(), results.end(), [&](const PointResult& b) {
-      const double ab = area_of(spec, b);
-      return !std::isnan(ab) && ab <= aa && b.error.max_abs <= a.error.max_abs &&
-             (ab < aa || b.error.max_abs < a.error.max_abs);
-    });
-  };
   std::string md =
       fmt::format("# Sweep {}\n\n`{}`: {} points, error over {} samples (seed {})\n\n", spec.name,
                   spec.file.string(), results.size(), spec.samples, spec.seed);
@@ -518,7 +534,6 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     md += fmt::format(" cc {} |", sc.scene);
     rule += "---|";
   }
-  const bool synth = spec.synth.generic || spec.synth.ice40;
   if (spec.synth.generic) {
     md += " cells | transistors |";
     rule += "---|---|";
@@ -534,7 +549,8 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     rule += "---|";
   }
   md += "\n" + rule + "\n";
-  for (const PointResult& r : results) {
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const PointResult& r = results[k];
     md += fmt::format("| {} | {} |", r.index, fs::path(r.base).stem().string());
     for (const auto& v : r.values) md += fmt::format(" {} |", unquote(v.second));
     md += fmt::format(" {:.4g} | {:.4g} |", r.error.max_lsb, r.error.mean_lsb);
@@ -545,51 +561,52 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
                         r.synth.fits ? fmt::format("{:.1f}", r.synth.fmax_mhz) : "does not fit");
     }
     md += fmt::format(" {} |", r.latency);
-    if (synth) md += dominated(r) ? " |" : " yes |";
+    if (synth) md += pareto[k] ? " yes |" : " |";
     md += "\n";
   }
-  write_text(out / "summary.md", md);
+  std::fputs(md.c_str(), set.add("summary.md").get());
 
   if (synth) {
     // pareto.csv (the figure's data) and pareto.png (scripts/plot.py pareto): error against
     // area, one series per variant, the front drawn and its points labelled "#<index> ...".
     const auto axis_name = [](const std::string& key) { return key.substr(key.rfind('.') + 1); };
     std::string data = "series,label,area,max_error,pareto\n";
-    for (const PointResult& r : results) {
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      const PointResult& r = results[k];
       const double area = area_of(spec, r);
       if (!std::isfinite(area)) continue;
-      const fs::path base(r.base);
-      const std::string base_name =
-          base.parent_path().filename().string() + "/" + base.stem().string();
       std::string series = "all points";
       if (spec.variant == "base") {
-        series = base_name;
+        series = base_name(r.base);
       } else if (!spec.variant.empty()) {
         for (const auto& v : r.values) {
           if (v.first == spec.variant) series = axis_name(v.first) + " = " + unquote(v.second);
         }
       }
       std::string label = fmt::format("#{}", r.index);
-      if (spec.bases.size() > 1 && spec.variant != "base") label += " " + base_name;
+      if (spec.bases.size() > 1 && spec.variant != "base") label += " " + base_name(r.base);
       for (const auto& v : r.values)
         label += fmt::format(" {}={}", axis_name(v.first), unquote(v.second));
       // The CSV has no quoting: keep commas out of the names.
       std::replace(series.begin(), series.end(), ',', ';');
       std::replace(label.begin(), label.end(), ',', ';');
-      data += fmt::format("{},{},{},{},{}\n", series, label, area, r.error.max_abs,
-                          dominated(r) ? 0 : 1);
+      data +=
+          fmt::format("{},{},{},{},{}\n", series, label, area, r.error.max_abs, pareto[k] ? 1 : 0);
     }
-    write_text(out / "pareto.csv", data);
+    OutputFile& pareto_csv = set.add("pareto.csv");
+    std::fputs(data.c_str(), pareto_csv.get());
+    std::fflush(pareto_csv.get());
     const std::string area_caption = spec.area == "transistors"
                                          ? "area: transistors (Yosys stat -tech cmos)"
                                      : spec.area == "lut4" ? "area: iCE40 LUT4s (synth_ice40)"
                                                            : "area: cells (Yosys generic synth)";
     plot_figure("pareto",
-                {"--csv", (out / "pareto.csv").string(), "--title",
+                {"--csv", pareto_csv.temp_path().string(), "--title",
                  fmt::format("{}: max error against area", spec.name), "--x-label", area_caption,
                  "--y-label", "max |error| against the float reference (output units)"},
-                out / "pareto.png");
+                set.add("pareto.png"));
   }
+  set.commit();
   return results;
 }
 
@@ -599,183 +616,11 @@ std::vector<PointResult> run_sweep(const SweepSpec& spec, const fs::path& out,
   const std::vector<SweepPoint> points = plan_sweep(spec, out);
   for (const SweepPoint& p : points) {
     progress(p.index, points.size());
-    PointResult r = evaluate_point(spec, point_path(out, p.index), p.index, log);
-    write_point_result(r, result_path(out, p.index));
+    PointResult r = evaluate_point(spec, out / point_file(p.index), p.index, log);
+    write_point_result(r, out / result_file(p.index));
   }
   progress(points.size(), points.size());
   return merge_sweep(spec, out);
-}
-
-// ---- Minimum-width search ----
-
-SearchSpec load_search(const fs::path& file) {
-  SearchSpec s;
-  s.file = file;
-  s.name = file.stem().string();
-  const toml::table t = parse_file(file);
-  for (const auto& [k, v] : t) {
-    const std::string key(k.str());
-    if (key == "name" && v.is_string()) {
-      s.name = *v.value<std::string>();
-    } else if (key == "base" && v.is_string()) {
-      s.base = resolve(file, *v.value<std::string>());
-    } else if (key == "signals" && v.is_array()) {
-      for (const auto& x : *v.as_array()) {
-        if (!x.is_string()) fail_at(file, x, "signals: expected [format] key names");
-        s.signals.push_back(*x.value<std::string>());
-      }
-    } else if (key == "min_frac" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
-      s.min_frac = static_cast<int>(*v.value<std::int64_t>());
-    } else if (key == "max_lsb" && (v.is_floating_point() || v.is_integer()) &&
-               *v.value<double>() > 0) {
-      s.max_lsb = *v.value<double>();
-    } else if (key == "min_colour_correctness" && (v.is_floating_point() || v.is_integer()) &&
-               *v.value<double>() > 0 && *v.value<double>() <= 1) {
-      s.min_colour_correctness = *v.value<double>();
-    } else if (key == "scene" && v.is_string()) {
-      s.scene = *v.value<std::string>();
-    } else if (key == "method" && v.is_string()) {
-      s.method = *v.value<std::string>();
-    } else if (key == "scene_size" && v.is_integer() && *v.value<std::int64_t>() >= 1 &&
-               *v.value<std::int64_t>() <= 2048) {
-      s.scene_size = static_cast<int>(*v.value<std::int64_t>());
-    } else if (key == "samples" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
-      s.samples = static_cast<std::uint64_t>(*v.value<std::int64_t>());
-    } else if (key == "seed" && v.is_integer() && *v.value<std::int64_t>() >= 0) {
-      s.seed = static_cast<std::uint64_t>(*v.value<std::int64_t>());
-    } else if (key == "verify_vectors" && v.is_integer() && *v.value<std::int64_t>() >= 1) {
-      s.verify_vectors = static_cast<std::uint64_t>(*v.value<std::int64_t>());
-    } else {
-      fail_at(file, v,
-              fmt::format("unexpected '{}' (expected name, base, signals, min_frac, "
-                          "max_lsb > 0, min_colour_correctness in (0, 1], scene, method, "
-                          "scene_size, samples, seed, verify_vectors)",
-                          key));
-    }
-  }
-  if (s.base.empty()) throw Error(fmt::format("{}: no base configuration", file.string()));
-  if (std::isinf(s.max_lsb) && s.min_colour_correctness == 0) {
-    throw Error(fmt::format("{}: no budget (max_lsb or min_colour_correctness)", file.string()));
-  }
-  if (s.min_colour_correctness > 0) {
-    if (s.scene.empty() || s.method.empty()) {
-      throw Error(fmt::format("{}: min_colour_correctness needs scene and method", file.string()));
-    }
-    const MethodInfo& m = find_method(s.method);
-    const std::string pipeline = Config::load(s.base).pipeline();
-    if (fs::path(std::string(m.config)).parent_path() != pipeline) {
-      throw Error(fmt::format("{}: method '{}' does not run on a {} unit", file.string(), s.method,
-                              pipeline));
-    }
-  }
-  if (s.signals.empty()) throw Error(fmt::format("{}: no signals to narrow", file.string()));
-  const toml::table base = parse_file(s.base);
-  for (const auto& sig : s.signals) {
-    if (!base["format"][sig].is_string()) {
-      throw Error(fmt::format("{}: signal '{}' is not a [format] key of {}", file.string(), sig,
-                              s.base.string()));
-    }
-  }
-  return s;
-}
-
-SearchResult search_min_width(const SearchSpec& spec,
-                              const std::function<void(std::string_view)>& note) {
-  const toml::table base = parse_file(spec.base);
-  std::map<std::string, fx::Format> formats;
-  for (const auto& sig : spec.signals)
-    formats[sig] = fx::Format::parse(*base["format"][sig].value<std::string>());
-  SearchResult result;
-  const auto candidate = [&](const std::map<std::string, fx::Format>& f) {
-    std::vector<std::pair<std::string, std::string>> values;
-    for (const auto& sig : spec.signals)
-      values.emplace_back("format." + sig, fmt::format("\"{}\"", f.at(sig).str()));
-    return values;
-  };
-  // Candidates are files (the renderer loads them): in a directory of their own.
-  const fs::path dir =
-      fs::temp_directory_path() / fmt::format("phongsim-search-{}-{}", spec.name, getpid());
-  fs::create_directories(dir);
-  const std::shared_ptr<void> cleanup(nullptr, [dir](void*) {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  });
-  struct Evaluation {
-    ModelError error;
-    double cc = NAN;
-    [[nodiscard]] std::string str() const {
-      return std::isnan(cc) ? fmt::format("max error {:.4g} LSB", error.max_lsb)
-                            : fmt::format("max error {:.4g} LSB, colour correctness {:.5f}",
-                                          error.max_lsb, cc);
-    }
-  };
-  // Evaluates a candidate, or nothing when the pipeline refuses it.
-  const auto try_formats =
-      [&](const std::map<std::string, fx::Format>& f) -> std::optional<Evaluation> {
-    ++result.evaluations;
-    try {
-      const fs::path file = dir / (spec.name + ".toml");
-      write_text(file, point_toml(spec.base, candidate(f), "", ""));
-      const Config cfg = Config::load(file);
-      const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
-      (void)make_model(pipeline, cfg);
-      Evaluation e{pipeline.float_error(cfg, spec.samples, spec.seed)};
-      if (spec.min_colour_correctness > 0) {
-        e.cc = scene_metrics(spec.scene, spec.method, spec.scene_size, file).colour_correctness;
-      }
-      return e;
-    } catch (const Error&) {
-      return std::nullopt;
-    }
-  };
-  const auto within = [&](const Evaluation& e) {
-    return e.error.max_lsb <= spec.max_lsb &&
-           (std::isnan(e.cc) || e.cc >= spec.min_colour_correctness);
-  };
-  const auto first = try_formats(formats);
-  if (!first)
-    throw Error(fmt::format("{}: the base configuration does not evaluate", spec.file.string()));
-  if (!within(*first)) {
-    throw Error(fmt::format("{}: the base already misses the budget ({})", spec.file.string(),
-                            first->str()));
-  }
-  result.error = first->error;
-  result.colour_correctness = first->cc;
-  note(fmt::format("base: {}", first->str()));
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const auto& sig : spec.signals) {
-      while (formats[sig].frac_bits > spec.min_frac) {
-        auto next = formats;
-        next[sig].frac_bits -= 1;
-        const auto e = try_formats(next);
-        if (!e || !within(*e)) break;
-        formats = next;
-        result.error = e->error;
-        result.colour_correctness = e->cc;
-        ++result.bits_saved;
-        changed = true;
-        note(fmt::format("{} -> {}: {}", sig, formats[sig].str(), e->str()));
-      }
-    }
-  }
-  for (const auto& sig : spec.signals) result.formats.emplace_back(sig, formats[sig].str());
-  std::string values;
-  for (const auto& [k, v] : result.formats)
-    values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", k, v);
-  result.toml = point_toml(
-      spec.base, candidate(formats),
-      fmt::format("# Found by `phongsim sweep search {}`: the narrowest fraction "
-                  "bits of {} within the budget ({} samples, seed {}).\n"
-                  "# Base {}; {}; max error {:.4g} LSB{}.\n",
-                  spec.file.filename().string(), fmt::join(spec.signals, ", "), spec.samples,
-                  spec.seed, spec.base.filename().string(), values, result.error.max_lsb,
-                  std::isnan(result.colour_correctness)
-                      ? ""
-                      : fmt::format(", colour correctness {:.5f} on {} ({})",
-                                    result.colour_correctness, spec.scene, spec.method)),
-      fmt::format("found by search {}: max error {:.4g} LSB", spec.name, result.error.max_lsb));
-  return result;
 }
 
 }  // namespace phongsim

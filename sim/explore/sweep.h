@@ -2,8 +2,8 @@
 // and axes of [format]/[mode]/[param]/[setup] values; every point of the grid is written as a
 // configuration file and evaluated: model error against the pipeline's float reference,
 // optionally colour correctness and PSNR on scenes, real synthesis (sim/explore/synth.h), latency.
-// Points are independent jobs (`plan` writes one command line each; `merge` collects them), and
-// a greedy search finds the narrowest configuration within an error budget. docs/exploration.md.
+// Points are independent jobs (`plan` writes one command line each; `merge` collects them).
+// The minimum-width search is sim/explore/search.h. docs/exploration.md.
 #pragma once
 
 #include <cmath>
@@ -20,6 +20,12 @@
 #include "sim/pipelines/registry.h"
 
 namespace phongsim {
+
+// Bounds checked when a sweep file is read, before any work (one line naming the number and the
+// limit): values per axis, points in the grid, random samples per point.
+inline constexpr std::size_t kMaxAxisValues = 256;
+inline constexpr std::size_t kMaxSweepPoints = 10000;
+inline constexpr std::uint64_t kMaxSweepSamples = 10'000'000;
 
 struct SweepAxis {
   std::string key;                  // "format.vec", "param.k", "mode.round", "setup.policy"
@@ -63,7 +69,8 @@ struct SweepPoint {
 
 struct PointResult {
   std::size_t index = 0;
-  std::string config;  // the point's configuration file
+  std::string config;       // the point's configuration file
+  std::string config_hash;  // of its content (merge refuses a result of another version)
   std::vector<std::pair<std::string, std::string>> values;
   std::string base;
   ModelError error;
@@ -81,8 +88,12 @@ struct PointResult {
 
 // Writes <out>/points/NNNN.toml for every point, <out>/jobs.txt (one `phongsim sweep point` per
 // line: `parallel < jobs.txt`, or line $SLURM_ARRAY_TASK_ID + 1 in a Slurm array job) and
-// <out>/Makefile (`make -j`). Returns the points.
+// <out>/Makefile (`make -j`), all or none (an OutputSet, "sweep plan": planning again replaces
+// the plan and the merged tables), and makes <out>/results/. Returns the points.
 std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const std::filesystem::path& out);
+
+// The hash a point result keeps of its configuration's content.
+[[nodiscard]] std::string content_hash(const std::string& text);
 
 // Result JSON of one point (written by `phongsim sweep point`, read by merge).
 [[nodiscard]] std::string point_result_json(const PointResult& r);
@@ -90,49 +101,19 @@ void write_point_result(const PointResult& r, const std::filesystem::path& path)
 
 // Collects <out>/results/*.json into <out>/sweep.csv and <out>/summary.md (the Pareto front
 // marked) and, with synthesis, <out>/pareto.csv and pareto.png (scripts/plot.py pareto: max
-// error against area, one series per variant, the front drawn and its points labelled).
-// Error when a planned point has no result yet (naming it).
+// error against area, one series per variant, the front drawn and its points labelled), all or
+// none (an OutputSet, "sweep merge"). Error when a planned point has no result yet, or one
+// computed from another version of its point (naming it).
 std::vector<PointResult> merge_sweep(const SweepSpec& spec, const std::filesystem::path& out);
+
+// Whether the Pareto column of `r` (among `results`) is set: no other point has both less or
+// equal area and less or equal max error, one of them less; NaN area (no synthesis): false.
+[[nodiscard]] bool on_pareto_front(const SweepSpec& spec, const PointResult& r,
+                                   const std::vector<PointResult>& results);
 
 // `run`: plan, evaluate every point in this process (progress on `progress`), merge.
 std::vector<PointResult> run_sweep(const SweepSpec& spec, const std::filesystem::path& out,
                                    const std::function<void(std::size_t, std::size_t)>& progress,
                                    std::FILE* log);
-
-// ---- Minimum-width search ----
-
-struct SearchSpec {
-  std::filesystem::path file;
-  std::string name;
-  std::filesystem::path base;
-  std::vector<std::string> signals;  // [format] keys whose fraction bits the search reduces
-  int min_frac = 1;
-  // Budgets (at least one): model_error().max_lsb <= max_lsb, and colour correctness against
-  // float Phong >= min_colour_correctness on `scene` rendered by `method` (a unit method of the
-  // base's pipeline) through the candidate, model backend, at `scene_size`.
-  double max_lsb = INFINITY;
-  double min_colour_correctness = 0;
-  std::string scene, method;
-  int scene_size = 32;
-  std::uint64_t samples = 20000;
-  std::uint64_t seed = 1;
-  std::uint64_t verify_vectors = 1000000;  // co-simulation of the result
-};
-[[nodiscard]] SearchSpec load_search(const std::filesystem::path& file);
-
-struct SearchResult {
-  std::string toml;  // the found configuration
-  ModelError error;
-  double colour_correctness = NAN;                           // with a colour-correctness budget
-  std::vector<std::pair<std::string, std::string>> formats;  // signal -> found format
-  int bits_saved = 0;                                        // fraction bits removed in total
-  std::size_t evaluations = 0;
-};
-
-// Greedy coordinate descent: for each signal in turn, remove fraction bits one at a time while
-// the budget holds; repeat the pass until no signal can lose a bit. Throws Error when the base
-// itself misses the budget.
-[[nodiscard]] SearchResult search_min_width(const SearchSpec& spec,
-                                            const std::function<void(std::string_view)>& note);
 
 }  // namespace phongsim

@@ -22,6 +22,7 @@
 #include "base/file_util.h"
 #include "base/paths.h"
 #include "base/process.h"
+#include "base/temporaries.h"
 #include "base/text.h"
 #include "sim/cosim/rtl_plugin.h"
 
@@ -55,28 +56,6 @@ std::string last_error_line(const std::string& log) {
   }
   return lines.empty() ? std::string("no output") : lines.back();
 }
-
-// A temporary directory removed with everything in it when the synthesis is over.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "phongsim-synth-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-      throw Error(fmt::format("cannot create a temporary directory {}", pattern));
-    }
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // A path as a yosys file argument of read_verilog (quoted) or of tee -o (plain: no spaces).
 std::string quoted(const fs::path& path) {
@@ -395,6 +374,7 @@ std::optional<SynthResult> read_cached(const fs::path& path, const std::string& 
 void write_cached(const fs::path& path, const nlohmann::json& j, std::FILE* log) {
   static std::atomic<unsigned> counter{0};
   const fs::path tmp = path.string() + fmt::format(".tmp.{}.{}", getpid(), counter.fetch_add(1));
+  const TempRegistration registration(tmp);
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   bool written = false;
@@ -423,7 +403,7 @@ SynthResult synthesize(const RtlDesign& src, const std::string& label, const Syn
   const std::string nextpnr_version =
       options.ice40 ? tool_version({"nextpnr-ice40", "--version"}, "nextpnr-ice40") : "";
 
-  TempDir tmp;
+  const TempDir tmp("synth");  // removed when the synthesis is over, or on a signal
 
   ContentHash h;
   h.add(kFlowVersion);
@@ -470,7 +450,7 @@ SynthResult synthesize(const RtlDesign& src, const std::string& label, const Syn
 
 void check_synthesizable(const RtlDesign& design, const std::string& label) {
   (void)tool_version({"yosys", "-V"}, "yosys");
-  TempDir tmp;
+  const TempDir tmp("synth");
   run_yosys(read_script(design, chparams(design.params), "") +
                 fmt::format("synth -top {0}; check -assert; select -assert-none t:$*dlatch* "
                             "t:$_DLATCH*",

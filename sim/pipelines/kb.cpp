@@ -19,6 +19,7 @@
 #include "base/error.h"
 #include "model/kb.h"
 #include "model/kb_setup.h"
+#include "sim/pipelines/guard_tables.h"
 
 namespace phongsim {
 namespace {
@@ -379,51 +380,51 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
   return e;
 }
 
-void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed, std::FILE* out) {
-  fmt::print(out,
-             "Three-piece quadratic against cos^n theta (0 beyond pi/2): max and rms over theta in "
-             "[0, pi] (kb::max_error, rms_error)\n");
-  fmt::print(out, "  {:>4}  {:>8} {:>8} {:>9} {:>9}   {:>8} {:>8} {:>9} {:>9}\n", "n", "a closed",
-             "b closed", "max", "rms", "a lsq", "b lsq", "max", "rms");
+void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed,
+             AnalysisReport& out) {
+  out.print(
+      "Three-piece quadratic against cos^n theta (0 beyond pi/2): max and rms over theta in "
+      "[0, pi] (kb::max_error, rms_error)\n");
+  out.print("  {:>4}  {:>8} {:>8} {:>9} {:>9}   {:>8} {:>8} {:>9} {:>9}\n", "n", "a closed",
+            "b closed", "max", "rms", "a lsq", "b lsq", "max", "rms");
+  out.table("Three-piece quadratic against cos^n theta over [0, pi]",
+            {"n", "a_closed", "b_closed", "max_closed", "rms_closed", "a_lsq", "b_lsq", "max_lsq",
+             "rms_lsq"});
   for (const KbFitRow& r : kb_fit_table()) {
-    fmt::print(out,
-               "  {:>4}  {:>8.5f} {:>8.5f} {:>9.6f} {:>9.6f}   {:>8.5f} {:>8.5f} {:>9.6f} "
-               "{:>9.6f}\n",
-               r.n, r.closed.a, r.closed.b, r.closed_max, r.closed_rms, r.lsq.a, r.lsq.b, r.lsq_max,
-               r.lsq_rms);
+    out.print(
+        "  {:>4}  {:>8.5f} {:>8.5f} {:>9.6f} {:>9.6f}   {:>8.5f} {:>8.5f} {:>9.6f} "
+        "{:>9.6f}\n",
+        r.n, r.closed.a, r.closed.b, r.closed_max, r.closed_rms, r.lsq.a, r.lsq.b, r.lsq_max,
+        r.lsq_rms);
+    out.row({static_cast<std::int64_t>(r.n), r.closed.a, r.closed.b, r.closed_max, r.closed_rms,
+             r.lsq.a, r.lsq.b, r.lsq_max, r.lsq_rms});
   }
   const int spans = static_cast<int>(std::max<std::uint64_t>(1, samples / 2000));
   const fx::Format out_fmt{false, 0, 8};
   const int lengths[] = {16, 64, 256, 1024, 4096};
   const int guards[] = {0, 4, 8, 12, 16, 20, 24, 40};
   for (const KbPolicy policy : {KbPolicy::exact_reload, KbPolicy::d2_only}) {
-    fmt::print(out,
-               "\nDrift: max |accumulator - exact span|, both clamped to [0, 1], in LSBs of an "
-               "8-bit output; {} random spans per cell (1-2 terms, n 1..125), seed {}, policy {}\n",
-               spans, seed, policy == KbPolicy::d2_only ? "d2_only" : "exact_reload");
-    fmt::print(out, "  {:>6}", "length");
-    for (const int g : guards) fmt::print(out, " {:>9}", fmt::format("G={}", g));
-    fmt::print(out, "\n");
-    for (const int length : lengths) {
-      fmt::print(out, "  {:>6}", length);
-      for (const int g : guards) {
-        fmt::print(out, " {:>9.4f}", kb_drift(length, g, policy, out_fmt, spans, seed));
-      }
-      fmt::print(out, "\n");
-    }
+    out.print(
+        "\nDrift: max |accumulator - exact span|, both clamped to [0, 1], in LSBs of an "
+        "8-bit output; {} random spans per cell (1-2 terms, n 1..125), seed {}, policy {}\n",
+        spans, seed, policy == KbPolicy::d2_only ? "d2_only" : "exact_reload");
+    drift_table(out,
+                fmt::format("Drift in LSBs of an 8-bit output, policy {}, by span length and "
+                            "guard bits",
+                            policy == KbPolicy::d2_only ? "d2_only" : "exact_reload"),
+                "length", 6, lengths, guards, [&](int length, int g) {
+                  return kb_drift(length, g, policy, out_fmt, spans, seed);
+                });
   }
-  fmt::print(out,
-             "\nGuard bits for a drift of at most 1/2 output LSB (exact_reload): analytic bound "
-             "G >= log2((L^2 - L + 2)/2), and the smallest G that met it on the spans above\n");
-  fmt::print(out, "  {:>6} {:>9} {:>9}\n", "length", "analytic", "measured");
-  for (const int length : lengths) {
-    int measured = 0;
-    while (measured < 40 &&
-           kb_drift(length, measured, KbPolicy::exact_reload, out_fmt, spans, seed) > 0.5) {
-      ++measured;
-    }
-    fmt::print(out, "  {:>6} {:>9} {:>9}\n", length, kb_guard_bits_needed(length), measured);
-  }
+  out.print(
+      "\nGuard bits for a drift of at most 1/2 output LSB (exact_reload): analytic bound "
+      "G >= log2((L^2 - L + 2)/2), and the smallest G that met it on the spans above\n");
+  guard_bits_table(
+      out, "Guard bits for a drift of at most 1/2 output LSB (exact_reload)", "length", 6, lengths,
+      [](int length) { return kb_guard_bits_needed(length); },
+      [&](int length, int g) {
+        return kb_drift(length, g, KbPolicy::exact_reload, out_fmt, spans, seed);
+      });
 }
 
 }  // namespace

@@ -80,19 +80,21 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
 }
 
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
-             std::FILE* out) {
-  fmt::print(out,
-             "LIRP output against p0 + a (p1 - p0) in float (inputs uniform: components in "
-             "[-1, 1], a in [0, 1], quantized to the input formats), in output LSBs; {} random "
-             "vectors, seed {}\n",
-             samples, seed);
-  fmt::print(out, "  {:<12} {:>8} {:>8} {:>8} {:>10} {:>10}\n", "config", "p", "a", "out", "max",
-             "mean");
+             AnalysisReport& out) {
+  out.print(
+      "LIRP output against p0 + a (p1 - p0) in float (inputs uniform: components in "
+      "[-1, 1], a in [0, 1], quantized to the input formats), in output LSBs; {} random "
+      "vectors, seed {}\n",
+      samples, seed);
+  out.print("  {:<12} {:>8} {:>8} {:>8} {:>10} {:>10}\n", "config", "p", "a", "out", "max", "mean");
+  out.table("LIRP output against p0 + a (p1 - p0) in float, in output LSBs",
+            {"config", "p", "a", "out", "max_lsb", "mean_lsb"});
   for (const Config& cfg : configs) {
     const LirpFormats f = LirpFormats::from_config(cfg);
     const ModelError e = lirp_float_error(cfg, samples, seed);
-    fmt::print(out, "  {:<12} {:>8} {:>8} {:>8} {:>10.4f} {:>10.4f}\n", cfg.name(), f.p.str(),
-               f.a.str(), f.out.str(), e.max_lsb, e.mean_lsb);
+    out.print("  {:<12} {:>8} {:>8} {:>8} {:>10.4f} {:>10.4f}\n", cfg.name(), f.p.str(), f.a.str(),
+              f.out.str(), e.max_lsb, e.mean_lsb);
+    out.row({cfg.name(), f.p.str(), f.a.str(), f.out.str(), e.max_lsb, e.mean_lsb});
   }
 }
 

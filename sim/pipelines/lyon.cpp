@@ -364,45 +364,56 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
 }
 
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
-             std::FILE* out) {
+             AnalysisReport& out) {
   std::vector<LyonModel> models;
   for (const Config& cfg : configs) models.emplace_back(LyonFormats::from_config(cfg));
   // The normalization table uses the first configuration that normalizes N.
   std::size_t norm = 0;
   while (norm + 1 < models.size() && models[norm].formats().norm == 0) ++norm;
   const LyonModel& nm = models[norm];
-  fmt::print(out, "Approximate normalization: length of a vector after g (Lyon, Fig. 4)\n");
-  fmt::print(out, "  {:>6}  {:>10}  {:>10}  {:>10}   fixed: {} (g{})\n", "length", "g1 float",
-             "g2 float", "fixed", configs[norm].name(), nm.formats().norm);
+  out.print("Approximate normalization: length of a vector after g (Lyon, Fig. 4)\n");
+  out.print("  {:>6}  {:>10}  {:>10}  {:>10}   fixed: {} (g{})\n", "length", "g1 float", "g2 float",
+            "fixed", configs[norm].name(), nm.formats().norm);
+  out.table(fmt::format("Approximate normalization: length after g, fixed: {} (g{})",
+                        configs[norm].name(), nm.formats().norm),
+            {"length", "g1_float", "g2_float", "fixed"});
   for (const auto& r : lyon_norm_table(nm)) {
-    fmt::print(out, "  {:>6.2f}  {:>10.5f}  {:>10.5f}  {:>10.5f}\n", r.length, r.g1, r.g2, r.fixed);
+    out.print("  {:>6.2f}  {:>10.5f}  {:>10.5f}  {:>10.5f}\n", r.length, r.g1, r.g2, r.fixed);
+    out.row({r.length, r.g1, r.g2, r.fixed});
   }
-  fmt::print(out, "  at y = 1/2 (length 0.7071): g1 = {}, g2 = {}, exact 1/sqrt(1/2) = {:.4f}\n\n",
-             lyon::g1(0.5), lyon::g2(0.5), 1 / std::sqrt(0.5));
+  out.print("  at y = 1/2 (length 0.7071): g1 = {}, g2 = {}, exact 1/sqrt(1/2) = {:.4f}\n\n",
+            lyon::g1(0.5), lyon::g2(0.5), 1 / std::sqrt(0.5));
 
-  fmt::print(out,
-             "Shape function: max over alpha of |f_k(x) - cos^n alpha|, x = (n/2)|D|^2, float\n");
-  fmt::print(out, "  {:>6}  {:>9}  {:>9}  {:>9}  {:>9}\n", "n", "k=0", "k=1", "k=2", "k=3");
+  out.print("Shape function: max over alpha of |f_k(x) - cos^n alpha|, x = (n/2)|D|^2, float\n");
+  out.print("  {:>6}  {:>9}  {:>9}  {:>9}  {:>9}\n", "n", "k=0", "k=1", "k=2", "k=3");
+  out.table("Shape function: max over alpha of |f_k(x) - cos^n alpha|, float",
+            {"n", "k0", "k1", "k2", "k3"});
   for (const auto& r : lyon_shape_table()) {
-    fmt::print(out, "  {:>6}  {:>9.6f}  {:>9.6f}  {:>9.6f}  {:>9.6f}\n", r.n, r.max_error[0],
-               r.max_error[1], r.max_error[2], r.max_error[3]);
+    out.print("  {:>6}  {:>9.6f}  {:>9.6f}  {:>9.6f}  {:>9.6f}\n", r.n, r.max_error[0],
+              r.max_error[1], r.max_error[2], r.max_error[3]);
+    out.row(
+        {static_cast<double>(r.n), r.max_error[0], r.max_error[1], r.max_error[2], r.max_error[3]});
   }
-  fmt::print(out,
-             "\nFixed-point output against the float datapath (same quantized inputs), in output "
-             "LSBs; {} random pixels, seed {}\n",
-             samples, seed);
-  fmt::print(out, "  {:<14} {:>9} {:>13} {:>9} {:>9} {:>9} {:>11}\n", "config", "spec max",
-             "max n<=256", "spec mean", "diff max", "diff mean", "highlights");
+  out.print(
+      "\nFixed-point output against the float datapath (same quantized inputs), in output "
+      "LSBs; {} random pixels, seed {}\n",
+      samples, seed);
+  out.print("  {:<14} {:>9} {:>13} {:>9} {:>9} {:>9} {:>11}\n", "config", "spec max", "max n<=256",
+            "spec mean", "diff max", "diff mean", "highlights");
+  out.table("Fixed-point output against the float datapath, in output LSBs",
+            {"config", "spec_max", "spec_max_n_le_256", "spec_mean", "diff_max", "diff_mean",
+             "highlights_percent"});
   for (std::size_t i = 0; i < models.size(); ++i) {
     const LyonOutputError e = lyon_output_error(models[i], samples, seed);
-    fmt::print(out, "  {:<14} {:>9.2f} {:>13.2f} {:>9.3f} {:>9.2f} {:>9.3f} {:>10.1f}%\n",
-               configs[i].name(), e.spec_max, e.spec_max_low_n, e.spec_mean, e.diff_max,
-               e.diff_mean,
-               100.0 * static_cast<double>(e.spec_nonzero) / static_cast<double>(e.samples));
+    out.print("  {:<14} {:>9.2f} {:>13.2f} {:>9.3f} {:>9.2f} {:>9.3f} {:>10.1f}%\n",
+              configs[i].name(), e.spec_max, e.spec_max_low_n, e.spec_mean, e.diff_max, e.diff_mean,
+              100.0 * static_cast<double>(e.spec_nonzero) / static_cast<double>(e.samples));
+    out.row({configs[i].name(), e.spec_max, e.spec_max_low_n, e.spec_mean, e.diff_max, e.diff_mean,
+             100.0 * static_cast<double>(e.spec_nonzero) / static_cast<double>(e.samples)});
   }
   for (std::size_t i = 0; i < models.size(); ++i) {
-    fmt::print(out, "\nStage formats of {} ({}, latency {} cycles)\n{}", configs[i].origin(),
-               configs[i].description(), models[i].latency(), lyon_stage_formats(models[i]));
+    out.print("\nStage formats of {} ({}, latency {} cycles)\n{}", configs[i].origin(),
+              configs[i].description(), models[i].latency(), lyon_stage_formats(models[i]));
   }
 }
 

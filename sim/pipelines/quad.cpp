@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "model/quad.h"
 #include "model/quad_setup.h"
+#include "sim/pipelines/guard_tables.h"
 
 namespace phongsim {
 
@@ -297,51 +298,46 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
 }
 
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
-             std::FILE* out) {
+             AnalysisReport& out) {
   const int triangles = static_cast<int>(std::max<std::uint64_t>(1, samples / 5000));
   const fx::Format out_fmt{false, 0, 8};
   const int sizes[] = {16, 64, 256, 1024};
   const int guards[] = {0, 4, 8, 12, 16, 20, 24, 40};
-  fmt::print(out,
-             "Drift: max |accumulator - r(s, t) evaluated directly (eqs. 4.1, 4.3)|, both clamped "
-             "to [0, 1], in LSBs of an 8-bit output; {} random triangles with vertices in a "
-             "size x size box per cell, quadratic colours, seed {}\n",
-             triangles, seed);
-  fmt::print(out, "  {:>5}", "size");
-  for (const int g : guards) fmt::print(out, " {:>9}", fmt::format("G={}", g));
-  fmt::print(out, "\n");
-  for (const int size : sizes) {
-    fmt::print(out, "  {:>5}", size);
-    for (const int g : guards) {
-      fmt::print(out, " {:>9.4f}", quad_drift(size, g, out_fmt, triangles, seed));
-    }
-    fmt::print(out, "\n");
-  }
-  fmt::print(out,
-             "\nGuard bits for a drift of at most 1/2 output LSB over a box: analytic bound "
-             "G >= log2(1 + (w-1)^2 + (w-1)(h-1) + (h-1)^2), and the smallest G that met it on "
-             "the triangles above\n");
-  fmt::print(out, "  {:>5} {:>9} {:>9}\n", "size", "analytic", "measured");
-  for (const int size : sizes) {
-    int measured = 0;
-    while (measured < 40 && quad_drift(size, measured, out_fmt, triangles, seed) > 0.5) ++measured;
-    fmt::print(out, "  {:>5} {:>9} {:>9}\n", size, quad_guard_bits_needed(size, size), measured);
-  }
-  fmt::print(out,
-             "\nOutput against direct evaluation, per configuration: |output - r(s, t)|, r "
-             "clamped to the output range, in output LSBs over {} random triangles of the "
-             "co-simulation's distribution (boxes up to 1024 pixels), colours of the "
-             "configuration's [setup] mode, seed {}\n",
-             triangles * 10, seed);
-  fmt::print(out, "  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9} {:>9}\n", "config", "mode", "acc", "out",
-             "pixels", "max", "mean");
+  out.print(
+      "Drift: max |accumulator - r(s, t) evaluated directly (eqs. 4.1, 4.3)|, both clamped "
+      "to [0, 1], in LSBs of an 8-bit output; {} random triangles with vertices in a "
+      "size x size box per cell, quadratic colours, seed {}\n",
+      triangles, seed);
+  drift_table(out, "Drift in LSBs of an 8-bit output, by box size and guard bits", "size", 5, sizes,
+              guards,
+              [&](int size, int g) { return quad_drift(size, g, out_fmt, triangles, seed); });
+  out.print(
+      "\nGuard bits for a drift of at most 1/2 output LSB over a box: analytic bound "
+      "G >= log2(1 + (w-1)^2 + (w-1)(h-1) + (h-1)^2), and the smallest G that met it on "
+      "the triangles above\n");
+  guard_bits_table(
+      out, "Guard bits for a drift of at most 1/2 output LSB over a box", "size", 5, sizes,
+      [](int size) { return quad_guard_bits_needed(size, size); },
+      [&](int size, int g) { return quad_drift(size, g, out_fmt, triangles, seed); });
+  out.print(
+      "\nOutput against direct evaluation, per configuration: |output - r(s, t)|, r "
+      "clamped to the output range, in output LSBs over {} random triangles of the "
+      "co-simulation's distribution (boxes up to 1024 pixels), colours of the "
+      "configuration's [setup] mode, seed {}\n",
+      triangles * 10, seed);
+  out.print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9} {:>9}\n", "config", "mode", "acc", "out",
+            "pixels", "max", "mean");
+  out.table("Output against direct evaluation, in output LSBs",
+            {"config", "mode", "acc", "out", "pixels", "max_lsb", "mean_lsb"});
   for (const Config& cfg : configs) {
     const QuadFormats f = QuadFormats::from_config(cfg);
     const QuadMode mode = quad_mode(cfg);
     const QuadOutputError e = quad_output_error(f, mode, triangles * 10, seed);
-    fmt::print(out, "  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9.4f} {:>9.4f}\n", cfg.name(),
-               mode == QuadMode::linear ? "linear" : "quadratic", f.acc.str(), f.out.str(),
-               e.pixels, e.max, e.mean);
+    out.print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9.4f} {:>9.4f}\n", cfg.name(),
+              mode == QuadMode::linear ? "linear" : "quadratic", f.acc.str(), f.out.str(), e.pixels,
+              e.max, e.mean);
+    out.row({cfg.name(), std::string(mode == QuadMode::linear ? "linear" : "quadratic"),
+             f.acc.str(), f.out.str(), static_cast<std::int64_t>(e.pixels), e.max, e.mean});
   }
 }
 

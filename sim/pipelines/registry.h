@@ -15,6 +15,7 @@
 
 #include "model/config.h"
 #include "model/pipeline.h"
+#include "sim/cosim/report.h"
 #include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stimulus.h"
 
@@ -86,9 +87,10 @@ struct PipelineInfo {
 
   // ---- accuracy ----
   ModelError (*float_error)(const Config& cfg, std::uint64_t samples, std::uint64_t seed);
-  // `phongsim analyze <name>`: the approximations and fixed-point error of `configs`, as text.
+  // `phongsim analyze <name>`: the approximations and fixed-point error of `configs`, as text
+  // and, for JSON, its tables (sim/cosim/report.h).
   void (*analyze)(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
-                  std::FILE* out);
+                  AnalysisReport& out);
 
   std::vector<Mutant> mutants;
 };

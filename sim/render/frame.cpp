@@ -7,6 +7,8 @@
 #include <limits>
 
 #include "base/error.h"
+#include "model/kb_setup.h"
+#include "ref/lyon_float.h"
 
 namespace phongsim::shading {
 
@@ -207,6 +209,14 @@ SamplePoints sample_points(const Frame& f, int t, bool midpoints) {
           quad::sample_normals(n[0], n[1], n[2])};
 }
 
+std::array<Vec3, 6> sample_colours(const Frame& f, int t) {
+  const SamplePoints sp = sample_points(f, t);
+  const Fragment fr = material_fragment(f);
+  std::array<Vec3, 6> c;
+  for (int k = 0; k < 6; ++k) c[k] = clamp01(shade(f, fr, sp.n[k], sp.p[k], lyon::phong));
+  return c;
+}
+
 Surface surface_at(const Frame& f, std::size_t t, const std::array<quad::Vertex2, 3>& pv, int x,
                    int y) {
   const auto& idx = f.geometry.triangles[t];
@@ -240,6 +250,17 @@ std::vector<Span> spans_of(const Frame& f, std::size_t t) {
     e.n2 = normalized(e.s2.n);
   }
   return spans;
+}
+
+kb::QuadParams kb_ab(double n) {
+  // The least-squares fit for every exponent (the closed forms degrade fast beyond 125).
+  return kb_params(std::max(1.0, std::round(n)), KbAbSource::least_squares);
+}
+
+KbLightEnds kb_light_ends(const Frame& f, const Light& l, const Span& e) {
+  const Vec3 l1 = Lighting::l_at(l, e.s1.p), l2 = Lighting::l_at(l, e.s2.p);
+  return {l1, l2, normalized(l1 + f.lighting.v_at(e.s1.p)),
+          normalized(l2 + f.lighting.v_at(e.s2.p))};
 }
 
 }  // namespace phongsim::shading

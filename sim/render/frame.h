@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "base/vec3.h"
+#include "ref/kb_float.h"
 #include "ref/quad_float.h"
 #include "sim/render/image.h"
 #include "sim/render/mesh.h"
@@ -162,6 +163,10 @@ struct SamplePoints {
 };
 [[nodiscard]] SamplePoints sample_points(const Frame& f, int t, bool midpoints = true);
 
+// Phong's lighting (lyon::phong) at the six sample points of triangle t, clamped to [0, 1]: the
+// colours the vertex methods interpolate (in float and through the quadratic unit).
+[[nodiscard]] std::array<Vec3, 6> sample_colours(const Frame& f, int t);
+
 // Triangle t's centroid (world), (p0 + p1 + p2)/3.
 [[nodiscard]] inline Vec3 centroid(const Frame& f, std::size_t t) {
   const auto& idx = f.geometry.triangles[t];
@@ -187,5 +192,20 @@ struct Span {
 // Spans of triangle t in row order: from the first to the last covered pixel of each row (the
 // scanline methods: Kuijk-Blake, Fence, highlight track).
 [[nodiscard]] std::vector<Span> spans_of(const Frame& f, std::size_t t);
+
+// ---- Kuijk-Blake angular interpolation (seed 001, section 1.2) ----
+// Diffuse cos α(N, L) and specular cos^n β(N, H) through the three-piece quadratic (n for the
+// diffuse term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's
+// specfuns.m), in float and through the engine.
+
+// The quadratic's (a, b) for exponent n: the least-squares fit, for every exponent (the closed
+// forms degrade fast beyond Kuijk-Blake's range 1..125).
+[[nodiscard]] kb::QuadParams kb_ab(double n);
+
+// One light along one span: the light and halfway directions at the two ends.
+struct KbLightEnds {
+  Vec3 l1, l2, h1, h2;
+};
+[[nodiscard]] KbLightEnds kb_light_ends(const Frame& f, const Light& l, const Span& e);
 
 }  // namespace phongsim::shading

@@ -65,15 +65,26 @@ void write_png(const Image& img, const std::filesystem::path& path) {
                             img.width(), img.height()));
   }
   OutputFile out(path);
+  write_png(img, out);
+  out.commit();
+}
+
+void write_png(const Image& img, OutputFile& out) {
+  if (img.empty()) {
+    throw Error(fmt::format("cannot write {}: the image is empty ({}x{})", out.path().string(),
+                            img.width(), img.height()));
+  }
   PngImage png;
   png.image.width = static_cast<png_uint_32>(img.width());
   png.image.height = static_cast<png_uint_32>(img.height());
   png.image.format = PNG_FORMAT_RGB;
   const auto* bytes = reinterpret_cast<const std::uint8_t*>(img.pixels().data());
   if (png_image_write_to_stdio(&png.image, out.get(), 0, bytes, 0, nullptr) == 0) {
-    throw Error(fmt::format("cannot write {}: {}", path.string(), png.image.message));
+    throw Error(fmt::format("cannot write {}: {}", out.path().string(), png.image.message));
   }
-  out.commit();
+  if (std::fflush(out.get()) != 0) {
+    throw Error(fmt::format("cannot write {}: {}", out.path().string(), std::strerror(errno)));
+  }
 }
 
 Image read_png(const std::filesystem::path& path) {

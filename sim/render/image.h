@@ -9,6 +9,8 @@
 #include <limits>
 #include <vector>
 
+#include "base/output_file.h"
+
 namespace phongsim {
 
 struct Rgb8 {
@@ -51,6 +53,8 @@ class Image {
 // Writes an 8-bit RGB PNG through libpng, atomically through OutputFile: nothing appears at
 // `path` on failure. Error "cannot write <path>: ..." (an empty image is refused up front).
 void write_png(const Image& img, const std::filesystem::path& path);
+// The same into an output already open; committing it is the caller's.
+void write_png(const Image& img, OutputFile& out);
 // Reads an 8-bit RGB PNG (as write_png makes; interlaced too) through libpng. Error
 // "cannot read <path>: ..." for anything else (grey, palette, alpha, 16-bit), for files cut
 // short before their final IEND chunk, corrupt files and images larger than Image::kMaxSize.

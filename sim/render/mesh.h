@@ -1,6 +1,7 @@
 // Triangle meshes for the renderer: the built-in test objects of the seeds (Kuijk–Blake's
-// octahedron spheres, Vlasic's triangle, dodecahedron, 40-triangle sphere and Utah teapot) and
-// readers for Wavefront OBJ (through tinyobjloader) and the Bézier-patch teapot format (.bpt).
+// octahedron spheres, Vlasic's triangle, dodecahedron, 40-triangle sphere; the Utah teapot is
+// sim/render/teapot.h) and readers for Wavefront OBJ (through tinyobjloader) and, by extension,
+// the Bézier-patch teapot format (.bpt).
 //
 // Conventions shared by everything here:
 //  - right-handed coordinates, +y up; the viewer of the built-in scenes sits on +z;
@@ -44,6 +45,13 @@ void compute_vertex_normals(Mesh& m);
 // of zero area get (0, 1, 0).
 [[nodiscard]] Mesh flat_normals_split(const Mesh& m);
 
+// Joins vertices whose positions lie within `eps` (max norm) of each other, drops triangles with
+// two corners at one position (and of zero area), and merges each set of coincident vertices
+// whose normals are within the crease angle (cos >= crease_cos) of the set's first one into a
+// single vertex with the normalized mean normal. Zero normals (failed evaluations) take the
+// area-weighted face normal afterwards; vertices no triangle uses are dropped.
+[[nodiscard]] Mesh weld(const Mesh& in, double eps, double crease_cos);
+
 // ---- Built-in objects ----
 
 // Unit sphere from an octahedron (vertices ±x, ±y, ±z), each triangle split into 4 at its edge
@@ -72,43 +80,6 @@ void compute_vertex_normals(Mesh& m);
 // atan(1/2) ≈ 26.6° outwards, so interpolated normals sweep across the triangle and a point
 // light in front of it makes a highlight inside (Gouraud shading cannot show it).
 [[nodiscard]] Mesh single_triangle();
-
-// ---- Bézier-patch teapot ----
-
-// One bicubic patch: control points row by row, p[4 * row + column]. u runs along a row
-// (column index), v across rows; the front (outward) side is the one cross(∂S/∂u, ∂S/∂v)
-// points to.
-struct BezierPatch {
-  std::array<Vec3, 16> p;
-};
-
-// Reads the .bpt format (../shared/data/README.md): the patch count, then per patch "3 3" and
-// 16 lines "x y z". Throws Error("<file>:<line>: <what>") for malformed input (only bicubic
-// patches are accepted).
-[[nodiscard]] std::vector<BezierPatch> read_bpt_patches(const std::filesystem::path& path);
-
-// Tessellates patches: each is evaluated on a (resolution + 1)² grid of (u, v) and every grid
-// cell becomes 2 triangles, those of zero area (at collapsed control rows) dropped. Normals are
-// cross(∂S/∂u, ∂S/∂v) from the analytic partial derivatives; where that vanishes (a collapsed
-// row: the lid's knob top, the bottom's centre) the normal is taken at a point 10^-5 further
-// into the patch (in both u and v). Coincident positions (within 10^-9 of the model's size)
-// become one vertex with the normalized mean of their normals, unless those normals differ by
-// more than 60° (a crease, which keeps one vertex per side). Coordinates are kept as they are:
-// no rotation, no scaling. resolution in [1, 256].
-[[nodiscard]] Mesh tessellate(const std::vector<BezierPatch>& patches, int resolution);
-
-// read_bpt_patches + tessellate, then rotated from the .bpt convention (z up) to ours (+y up):
-// (x, y, z) -> (x, z, -y), a proper rotation about x, so windings stay counter-clockwise.
-[[nodiscard]] Mesh read_teapot_bpt(const std::filesystem::path& path, int resolution);
-
-// The default teapot resolution: 8 gives 32 patches · 8² cells · 2 = 4096 triangles minus the
-// 8 · 8 degenerate ones at the collapsed rows of the 4 lid-top and 4 bottom patches = 4032
-// facets, the closest to Vlasic's "3750 facets" of all resolutions (7 gives 3080).
-inline constexpr int kTeapotDefaultResolution = 8;
-
-// The Utah teapot of data/teapot.bpt (in the repository), read_teapot_bpt(): +y up, spout
-// towards +x, resting on y = 0, about 6.4 units long. resolution 0 means the default.
-[[nodiscard]] Mesh teapot(int resolution = 0);
 
 // ---- Mesh files ----
 

@@ -36,16 +36,20 @@ std::string complaint(std::string_view output, const std::vector<std::string>& a
 void plot_figure(std::string_view figure, const std::vector<std::string>& args,
                  const std::filesystem::path& out) {
   OutputFile png(out);  // checks the destination now; removes the temporary file on failure
+  plot_figure(figure, args, png);
+  png.commit();
+}
+
+void plot_figure(std::string_view figure, const std::vector<std::string>& args, OutputFile& out) {
   std::vector<std::string> argv{python_program(), (data_root() / "scripts" / "plot.py").string(),
                                 std::string(figure)};
   argv.insert(argv.end(), args.begin(), args.end());
-  argv.insert(argv.end(), {"--out", png.temp_path().string()});
+  argv.insert(argv.end(), {"--out", out.temp_path().string()});
   const ProcessResult r = run_process(argv);
   if (r.exit_code != 0) {
-    throw Error(
-        fmt::format("cannot write {}: {}", out.string(), complaint(r.out, argv, r.exit_code)));
+    throw Error(fmt::format("cannot write {}: {}", out.path().string(),
+                            complaint(r.out, argv, r.exit_code)));
   }
-  png.commit();
 }
 
 }  // namespace phongsim

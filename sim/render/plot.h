@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "base/output_file.h"
+
 namespace phongsim {
 
 // Runs `<python_program()> scripts/plot.py <figure> <args...> --out <temporary>` (no shell;
@@ -17,5 +19,9 @@ namespace phongsim {
 // and their arguments.
 void plot_figure(std::string_view figure, const std::vector<std::string>& args,
                  const std::filesystem::path& out);
+
+// The same into an output already open (the figure goes to its temporary file; committing it
+// is the caller's, e.g. with the other files of an OutputSet).
+void plot_figure(std::string_view figure, const std::vector<std::string>& args, OutputFile& out);
 
 }  // namespace phongsim

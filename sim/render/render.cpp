@@ -1,35 +1,24 @@
 #include "sim/render/render.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <limits>
 #include <map>
 #include <memory>
 
 #include "base/error.h"
-#include "base/output_file.h"
 #include "base/paths.h"
 #include "model/config.h"
-#include "model/kb.h"
-#include "model/kb_setup.h"
-#include "model/lyon.h"
-#include "model/quad.h"
-#include "model/quad_setup.h"
 #include "ref/kb_float.h"
 #include "ref/lyon_float.h"
 #include "ref/quad_float.h"
-#include "sim/cosim/harness.h"
-#include "sim/cosim/rtl_plugin.h"
-#include "sim/pipelines/registry.h"
 #include "sim/render/frame.h"
-#include "sim/render/plot.h"
 #include "sim/render/scene.h"
 #include "sim/render/seed_methods.h"
+#include "sim/render/unit_methods.h"
 
 namespace phongsim {
 namespace {
@@ -66,9 +55,6 @@ struct Method {
 double row(lyon::Spec s, Vec3 n, Vec3 l, Vec3 v, double shin) {
   return lyon::specfuns(n, l, v, shin)[lyon::index(s)];
 }
-
-// Lyon's root-shininess unit (Fig. 8) takes m = round(√n) and so shades with m², not n.
-double root_shininess(double n) { return std::round(std::sqrt(n)); }
 
 const std::vector<Method>& methods() {
   using lyon::Spec;
@@ -210,63 +196,6 @@ const std::vector<std::string> kShinyballsMethods{"phong",
 const std::vector<std::string> kMeshMethods{"flat",  "gouraud", "gouraud4", "quadratic",
                                             "phong", "blinn",   "lyon-k2"};
 
-// ---- Hardware units: one configuration's model or Verilated RTL ----
-
-class Unit {
- public:
-  Unit(const fs::path& config, Backend backend, bool no_build)
-      : cfg_(Config::load(config)),
-        model_(make_model(find_pipeline(cfg_.pipeline()), cfg_)),
-        backend_(backend) {
-    if (backend == Backend::rtl) {
-      const RtlPlugin plugin =
-          locate_rtl(rtl_design(find_pipeline(cfg_.pipeline()), cfg_), *model_,
-                     no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
-      library_ = RtlLibrary::open(plugin);
-    }
-  }
-
-  [[nodiscard]] const Config& config() const { return cfg_; }
-  [[nodiscard]] const PipelineModel& model() const { return *model_; }
-
-  // Every output of `vectors` (flattened raw inputs), in order.
-  std::vector<std::int64_t> run(const std::vector<std::int64_t>& vectors,
-                                const RenderProgress& progress, std::string_view what) {
-    model_->reset();  // the kb engine keeps span state between words
-    const std::size_t n_in = model_->inputs().size();
-    const std::size_t n_out = model_->outputs().size();
-    const std::uint64_t count = vectors.size() / n_in;
-    std::vector<std::int64_t> out;
-    if (backend_ == Backend::model) {
-      constexpr std::uint64_t kStep = 4096;
-      for (std::uint64_t i = 0; i < count; i += kStep) {
-        const std::uint64_t n = std::min(kStep, count - i);
-        (void)model_->eval_batch(std::span(vectors).subspan(i * n_in, n * n_in), out);
-        progress(what, i, count);
-      }
-      return out;
-    }
-    auto dut = library_->create(*model_);
-    std::uint64_t outputs = 0;
-    const HarnessResult r =
-        stream_vectors(*dut, n_in, n_out, vectors, [&](std::span<const std::int64_t> o) {
-          out.insert(out.end(), o.begin(), o.end());
-          if (++outputs % 4096 == 0) progress(what, outputs, 0);
-        });
-    if (r.reason != StopReason::finished || r.inputs != count) {
-      throw Error(fmt::format("{}: the RTL of {} stopped: {}", what, cfg_.origin(),
-                              r.message.empty() ? "not every input was accepted" : r.message));
-    }
-    return out;
-  }
-
- private:
-  Config cfg_;
-  std::unique_ptr<PipelineModel> model_;
-  Backend backend_;
-  std::shared_ptr<RtlLibrary> library_;
-};
-
 // Method m's lighting in float (the vertex methods light by Phong).
 Vec3 shade_float(const Method& m, const Frame& f, const Fragment& fr, Vec3 n, Vec3 p) {
   return shade(f, fr, n, p, m.spec != nullptr ? m.spec : lyon::phong);
@@ -279,61 +208,6 @@ Image pixel_float(const Method& m, const Frame& f) {
     img.at(fr.x, fr.y) = to_rgb8(shade_float(m, f, fr, normalized(fr.n), fr.p));
   }
   return img;
-}
-
-// Per-pixel methods through a Lyon unit: one transaction per pixel and light, with
-// N0 = N1 = the interpolated normal (not normalized: the unit's g-normalization does that) and
-// a = 0; V and L unit vectors; shininess n (arrangement 8: m = round(sqrt(n))).
-Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
-                 std::string_view what) {
-  const LyonFormats lf = LyonFormats::from_config(unit.config());
-  const auto q = [](double x, fx::Format fmt) {
-    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
-  };
-  std::vector<std::int64_t> words;
-  const std::size_t nl = f.lighting.lights.size();
-  words.reserve(f.fragments.size() * nl * 14);
-  for (const Fragment& fr : f.fragments) {
-    const Vec3 v = f.lighting.v_at(fr.p);
-    const double shin =
-        lf.arrangement == 8 ? root_shininess(fr.shininess) : std::round(fr.shininess);
-    for (const Light& l : f.lighting.lights) {
-      const Vec3 ld = Lighting::l_at(l, fr.p);
-      for (int rep = 0; rep < 2; ++rep) {
-        words.insert(words.end(), {q(fr.n.x, lf.vec), q(fr.n.y, lf.vec), q(fr.n.z, lf.vec)});
-      }
-      words.push_back(0);
-      words.insert(words.end(), {q(v.x, lf.vec), q(v.y, lf.vec), q(v.z, lf.vec)});
-      words.insert(words.end(), {q(ld.x, lf.vec), q(ld.y, lf.vec), q(ld.z, lf.vec)});
-      words.push_back(q(shin, lf.shin));
-    }
-  }
-  const std::vector<std::int64_t> out = unit.run(words, progress, what);
-  if (out.size() != f.fragments.size() * nl * 2) {
-    throw Error(fmt::format("{}: the unit returned {} outputs for {} pixels", what, out.size() / 2,
-                            f.fragments.size() * nl));
-  }
-  Image img = blank(f);
-  std::vector<Amounts> a(nl);
-  for (std::size_t i = 0; i < f.fragments.size(); ++i) {
-    for (std::size_t k = 0; k < nl; ++k) {
-      a[k] = {fx::to_real(out[2 * (i * nl + k) + 1], lf.diff),
-              fx::to_real(out[2 * (i * nl + k)], lf.spec)};
-    }
-    const Fragment& fr = f.fragments[i];
-    img.at(fr.x, fr.y) = to_rgb8(combine(fr, f.lighting.lights, a));
-  }
-  return img;
-}
-
-// The lighting at the six sample points of triangle t, clamped to [0, 1]: the colours the
-// vertex methods interpolate.
-std::array<Vec3, 6> samples(const Frame& f, int t) {
-  const SamplePoints sp = sample_points(f, t);
-  const Fragment fr = material_fragment(f);
-  std::array<Vec3, 6> c;
-  for (int k = 0; k < 6; ++k) c[k] = clamp01(shade_float(phong(), f, fr, sp.n[k], sp.p[k]));
-  return c;
 }
 
 // Vertex methods (flat, Gouraud, subdivided Gouraud, quadratic) in float.
@@ -374,7 +248,7 @@ Image vertex_float(const Method& m, const Frame& f) {
       continue;
     }
     if (!done[t]) {
-      cache[t] = samples(f, fr.tri);
+      cache[t] = sample_colours(f, fr.tri);
       done[t] = true;
     }
     const auto& c = cache[t];
@@ -409,84 +283,10 @@ Image vertex_float(const Method& m, const Frame& f) {
   return img;
 }
 
-// Vertex methods through the quadratic unit: one program per triangle with a visible pixel
-// (linear configurations get the plane through the vertex colours); the unit's pixels are kept
-// where the triangle is the visible surface.
-Image vertex_unit(const Method& m, const Frame& f, Unit& unit, const RenderProgress& progress,
-                  std::string_view what) {
-  const QuadFormats qf = QuadFormats::from_config(unit.config());
-  if (qf.sub_bits != kSubBits) {
-    throw Error(fmt::format("{}: the renderer projects with {} subpixel bits; {} has {}", what,
-                            kSubBits, unit.config().origin(), qf.sub_bits));
-  }
-  // The framebuffer's 255 means 1.0, the unit's largest output (255/256 for 0.8) does: colours
-  // go in scaled by that top value, so the output's raw bits are the framebuffer value.
-  const double top = fx::to_real(qf.out.max_raw(), qf.out);
-  const std::vector<bool>& visible = f.visible;
-  std::vector<std::int64_t> words;
-  std::vector<int> tris;
-  std::vector<std::size_t> counts;
-  for (std::size_t t = 0; t < visible.size(); ++t) {
-    if (!visible[t]) continue;
-    const auto c = samples(f, static_cast<int>(t));
-    std::array<quad::Coeffs, 3> colour;
-    for (int ch = 0; ch < 3; ++ch) {
-      quad::Samples r;
-      for (int k = 0; k < 6; ++k) r[k] = channel(c[k], ch) * top;
-      colour[ch] = m.kind == Kind::gouraud ? quad::linear_coefficients(r[0], r[2], r[4])
-                                           : quad::coefficients(r);
-    }
-    // Clipped to the image, so the unit emits exactly the triangle's coverage.
-    const auto w =
-        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height}));
-    words.insert(words.end(), w.begin(), w.end());
-    tris.push_back(static_cast<int>(t));
-    counts.push_back(f.coverage[t].size());
-  }
-  const std::vector<std::int64_t> out = unit.run(words, progress, what);
-  std::size_t expected = 0;
-  for (const std::size_t c : counts) expected += c;
-  if (out.size() != 5 * expected) {
-    throw Error(fmt::format("{}: the unit emitted {} pixels, coverage says {}", what,
-                            out.size() / 5, expected));
-  }
-  Image img = blank(f);
-  std::size_t at = 0;
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    for (std::size_t i = 0; i < counts[k]; ++i, at += 5) {
-      const auto x = static_cast<int>(out[at]);
-      const auto y = static_cast<int>(out[at + 1]);
-      if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
-      if (!f.shows(static_cast<std::size_t>(tris[k]), x, y)) continue;
-      const double full = static_cast<double>(qf.out.max_raw());
-      img.at(x, y) =
-          to_rgb8({static_cast<double>(out[at + 2]) / full, static_cast<double>(out[at + 3]) / full,
-                   static_cast<double>(out[at + 4]) / full});
-    }
-  }
-  return img;
-}
-
 // ---- Kuijk-Blake angular interpolation (seed 001, section 1.2) ----
 // Per span: N, the light direction L and the halfway vector H = (L + V)/|L + V| at the two end
-// pixels' centres; along the span N, L, H rotate at constant rates (t = 0 .. 1). Diffuse
-// cos α(N, L) and specular cos^n β(N, H) through the three-piece quadratic (n for the diffuse
-// term 1; the specular exponent 4n, the halfway form of Phong's n as in Lyon's specfuns.m).
-
-kb::QuadParams kb_ab(double n) {
-  // The least-squares fit for every exponent (the closed forms degrade fast beyond 125).
-  return kb_params(std::max(1.0, std::round(n)), KbAbSource::least_squares);
-}
-
-// One light along one span: the light and halfway directions at the two ends.
-struct KbLightEnds {
-  Vec3 l1, l2, h1, h2;
-};
-KbLightEnds kb_light_ends(const Frame& f, const Light& l, const Span& e) {
-  const Vec3 l1 = Lighting::l_at(l, e.s1.p), l2 = Lighting::l_at(l, e.s2.p);
-  return {l1, l2, normalized(l1 + f.lighting.v_at(e.s1.p)),
-          normalized(l2 + f.lighting.v_at(e.s2.p))};
-}
+// pixels' centres; along the span N, L, H rotate at constant rates (t = 0 .. 1) (frame.h:
+// kb_light_ends, kb_ab).
 
 // One light's diffuse (N, L) and specular (N, H) amounts along a span by the method's variant,
 // with the per-span work (the decompositions, the one-vector angles) done once.
@@ -561,79 +361,6 @@ Image kb_float(const Method& m, const Frame& f) {
             to_rgb8(combine(f.fragments[static_cast<std::size_t>(o)], f.lighting.lights, a));
       }
     }
-  }
-  return img;
-}
-
-// The one-vector method through the Kuijk-Blake engine: per span and colour channel one program
-// whose terms are the ambient (a constant: angle 0, rate 0), and per light the diffuse and the
-// specular one-vector terms scaled by the light's and the material's colour. The channel values
-// are scaled by the output's top value, like the quadratic unit's (vertex_unit).
-Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::string_view what) {
-  const KbFormats kf = KbFormats::from_config(unit.config());
-  const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
-  const double top = fx::to_real(kf.out.max_raw(), kf.out);
-  const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * f.material.shininess);
-  const std::vector<bool>& visible = f.visible;
-  std::vector<std::int64_t> words;
-  struct Placed {
-    int tri, y, x0, x1;
-  };
-  std::vector<Placed> placed;
-  for (std::size_t t = 0; t < visible.size(); ++t) {
-    if (!visible[t]) continue;
-    for (const Span& e : spans_of(f, t)) {
-      const int length = e.x1 - e.x0 + 1;
-      const double per_pixel = length == 1 ? 0.0 : 1.0 / (length - 1);
-      // Per light: the diffuse and specular one-vector angles (the same for every channel).
-      std::vector<std::pair<kb::ScanlineAngles, kb::ScanlineAngles>> angles;
-      for (const Light& l : f.lighting.lights) {
-        const KbLightEnds le = kb_light_ends(f, l, e);
-        angles.emplace_back(kb::one_vector(e.n1, e.n2, le.l1, le.l2),
-                            kb::one_vector(e.n1, e.n2, le.h1, le.h2));
-      }
-      for (int ch = 0; ch < 3; ++ch) {
-        KbSpan span;
-        span.length = length;
-        span.terms.push_back({0, 0, ab1, channel(f.material.ambient, ch) * top});
-        for (std::size_t k = 0; k < angles.size(); ++k) {
-          const Light& l = f.lighting.lights[k];
-          const auto& [d, s] = angles[k];
-          const double lc = channel(l.colour, ch) * top;
-          span.terms.push_back({d.theta0, d.dtheta * per_pixel, ab1,
-                                lc * channel(f.material.diffuse, ch) * std::max(d.scale, 0.0)});
-          span.terms.push_back({s.theta0, s.dtheta * per_pixel, abn,
-                                lc * channel(f.material.specular, ch) *
-                                    std::pow(std::max(s.scale, 0.0), 4 * f.material.shininess)});
-        }
-        for (const auto& w : kb_program(span, so.policy, kf))
-          words.insert(words.end(), w.begin(), w.end());
-      }
-      placed.push_back({static_cast<int>(t), e.y, e.x0, e.x1});
-    }
-  }
-  const std::vector<std::int64_t> out = unit.run(words, progress, what);
-  std::size_t expected = 0;
-  for (const Placed& p : placed) expected += 3 * static_cast<std::size_t>(p.x1 - p.x0 + 1);
-  if (out.size() != 2 * expected) {
-    throw Error(fmt::format("{}: the engine emitted {} pixels, the spans have {}", what,
-                            out.size() / 2, expected));
-  }
-  Image img = blank(f);
-  const double full = static_cast<double>(kf.out.max_raw());
-  std::size_t at = 0;
-  for (const Placed& p : placed) {
-    const std::size_t length = static_cast<std::size_t>(p.x1 - p.x0 + 1);
-    for (std::size_t i = 0; i < length; ++i) {
-      const int x = p.x0 + static_cast<int>(i);
-      if (!f.shows(static_cast<std::size_t>(p.tri), x, p.y)) continue;
-      const auto value = [&](int ch) {
-        return static_cast<double>(out[at + 2 * (static_cast<std::size_t>(ch) * length + i)]) /
-               full;
-      };
-      img.at(x, p.y) = to_rgb8({value(0), value(1), value(2)});
-    }
-    at += 2 * 3 * length;
   }
   return img;
 }
@@ -755,7 +482,22 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   // Units (loading them finds or builds the plugins before rendering starts). A method's unit
   // is its built-in configuration, or options.unit_config when that is of the same pipeline.
   std::string override_pipeline;
-  if (!o.unit_config.empty()) override_pipeline = Config::load(o.unit_config).pipeline();
+  if (!o.unit_config.empty()) {
+    override_pipeline = Config::load(o.unit_config).pipeline();
+    // A configuration no chosen method would run is a mistake, not something to ignore.
+    bool used = false;
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      used = used ||
+             (backends[i] != Backend::float_ref &&
+              fs::path(std::string(chosen[i]->info.config)).parent_path() == override_pipeline);
+    }
+    if (!used) {
+      throw Error(fmt::format(
+          "--unit-config {} is a {} configuration, but no method chosen here runs on a {} unit "
+          "(through --backend model, rtl or auto)",
+          o.unit_config, override_pipeline, override_pipeline));
+    }
+  }
   const auto unit_path = [&](const Method& m) {
     const fs::path built_in = data_root() / "configs" / (std::string(m.info.config) + ".toml");
     const bool replace = !override_pipeline.empty() &&
@@ -781,7 +523,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   }
   const TextureOptions texture{o.texture_size, o.texture_filter};
 
-  if (o.scanline >= f.height) {
+  if (o.scanline < -1 || o.scanline >= f.height) {
     throw Error(
         fmt::format("--scanline {} is outside the image (0..{})", o.scanline, f.height - 1));
   }
@@ -817,7 +559,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
       case Kind::kb_one_vector:
         return kb_unit(f, unit, progress, what);
       default:
-        return vertex_unit(m, f, unit, progress, what);
+        return vertex_unit(m.kind == Kind::gouraud, f, unit, progress, what);
     }
   };
   // One shading pass, timed (wall clock and the process's CPU time).
@@ -892,129 +634,6 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
     result.results.push_back(std::move(r));
   }
   return result;
-}
-
-std::string metrics_markdown(const RenderResult& r) {
-  std::string s =
-      "| method | backend | colour correctness (eq. 6.1) | PSNR (dB) | max error | pixels |";
-  std::string rule = "|---|---|---|---|---|---|";
-  for (const auto& region : r.regions) {
-    s += fmt::format(" cc {} |", region.first);
-    rule += "---|";
-  }
-  s += "\n" + rule + "\n";
-  for (const MethodResult& m : r.results) {
-    s += fmt::format(
-        "| {} | {} | {:.4f} | {} | {} | {} |", m.method, backend_name(m.backend),
-        m.metrics.colour_correctness,
-        std::isinf(m.metrics.psnr) ? std::string("inf") : fmt::format("{:.2f}", m.metrics.psnr),
-        m.metrics.max_error, m.metrics.pixels);
-    for (const ImageMetrics& rm : m.region_metrics)
-      s += fmt::format(" {:.4f} |", rm.colour_correctness);
-    s += "\n";
-  }
-  return s;
-}
-
-std::vector<fs::path> write_render_outputs(const RenderResult& r, const fs::path& dir) {
-  const int row = r.scanline;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw Error(fmt::format("cannot create {}: {}", dir.string(), ec.message()));
-  { OutputFile probe(dir / ".phongsim-write-test"); }  // unwritable: fail before any output
-
-  std::vector<fs::path> written;
-  const auto path = [&](std::string_view suffix) {
-    return dir / fmt::format("{}_{}", r.scene, suffix);
-  };
-  // The reference is a row and a curve of its own unless a float rendering of the same method
-  // (the same image) is among the results: that one is then marked as the reference.
-  const auto is_reference = [&](const MethodResult& m) {
-    return m.method == r.reference.method && m.backend == Backend::float_ref &&
-           m.image == r.reference.image;
-  };
-  const bool reference_listed = std::any_of(r.results.begin(), r.results.end(), is_reference);
-  const auto plain_label = [](const MethodResult& m) {
-    return fmt::format("{} [{}]", m.method, backend_name(m.backend));
-  };
-  const auto label = [&](const MethodResult& m) {
-    return plain_label(m) + (is_reference(m) ? " (reference)" : "");
-  };
-  // Grid (scripts/plot.py grid): one row per method, image and difference; the reference's image
-  // goes to a temporary file for it.
-  const fs::path reference_png =
-      dir / fmt::format(".{}_reference.tmp.{}.png", r.scene, static_cast<long>(getpid()));
-  struct Remove {
-    fs::path p;
-    ~Remove() {
-      std::error_code e;
-      fs::remove(p, e);
-    }
-  } remove_reference{reference_png};
-  std::vector<std::string> grid{"--title", r.scene + r.settings, "--columns", "image",
-                                fmt::format("difference from {} (eq. 6.2)", r.reference.method)};
-  if (!reference_listed) {
-    write_png(r.reference.image, reference_png);
-    grid.insert(grid.end(),
-                {"--row", plain_label(r.reference) + " (reference)", reference_png.string(), "-"});
-  }
-  // Scanline (scripts/plot.py scanline): eq. 6.3 along the row, one column per curve.
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> curves;
-  if (!reference_listed) {
-    names.push_back(plain_label(r.reference) + " (reference)");
-    curves.push_back(illumination_row(r.reference.image, row));
-  }
-  for (const MethodResult& m : r.results) {
-    const Image diff = difference_image(r.reference.image, m.image);
-    write_png(m.image, path(m.method + ".png"));
-    write_png(diff, path(m.method + "_diff.png"));
-    written.push_back(path(m.method + ".png"));
-    written.push_back(path(m.method + "_diff.png"));
-    grid.insert(grid.end(), {"--row", label(m), path(m.method + ".png").string(),
-                             path(m.method + "_diff.png").string()});
-    names.push_back(label(m));
-    curves.push_back(illumination_row(m.image, row));
-  }
-  OutputFile scanline_csv(path("scanline.csv"));
-  std::string data = "x";
-  for (const std::string& n : names) data += "," + n;
-  data += "\n";
-  for (std::size_t x = 0; x < curves.front().size(); ++x) {
-    data += fmt::format("{}", x);
-    for (const auto& c : curves) data += fmt::format(",{:.6f}", c[x]);
-    data += "\n";
-  }
-  std::fputs(data.c_str(), scanline_csv.get());
-  scanline_csv.commit();
-  written.push_back(path("scanline.csv"));
-  plot_figure("grid", grid, path("grid.png"));
-  written.push_back(path("grid.png"));
-  plot_figure("scanline",
-              {"--csv", path("scanline.csv").string(), "--title",
-               fmt::format("{}: illumination along row {} (eq. 6.3){}", r.scene, row, r.settings)},
-              path("scanline.png"));
-  written.push_back(path("scanline.png"));
-
-  OutputFile csv(path("metrics.csv"));
-  std::string text =
-      "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds,cpu_seconds\n";
-  for (const MethodResult& m : r.results) {
-    text += fmt::format("{},{},{:.6f},{:.4f},{},{},{:.6f},{:.6f}\n", m.method,
-                        backend_name(m.backend), m.metrics.colour_correctness, m.metrics.psnr,
-                        m.metrics.max_error, m.metrics.pixels, m.seconds, m.cpu_seconds);
-  }
-  std::fputs(text.c_str(), csv.get());
-  csv.commit();
-  written.push_back(path("metrics.csv"));
-  OutputFile md(path("metrics.md"));
-  std::fputs(fmt::format("Scene {}, reference {} (float){}\n\n{}", r.scene, r.reference.method,
-                         r.settings, metrics_markdown(r))
-                 .c_str(),
-             md.get());
-  md.commit();
-  written.push_back(path("metrics.md"));
-  return written;
 }
 
 }  // namespace phongsim

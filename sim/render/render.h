@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/output_file.h"
 #include "ref/texture_maps.h"
 #include "sim/render/image.h"
 
@@ -49,7 +50,8 @@ struct RenderOptions {
   bool no_build = false;      // never Verilate: fail when a plugin is missing
   int scanline = -1;          // row of the scanline plot; -1: the middle
   // A configuration file that replaces the built-in one of every unit method of its pipeline
-  // (width exploration renders scenes through candidate configurations).
+  // (width exploration renders scenes through candidate configurations); Error when no chosen
+  // method runs on a unit of that pipeline.
   std::string unit_config;
   Terms terms = Terms::all;
   // The texture methods' textures (docs/methods.md): texels per side (0: the exact texture
@@ -91,12 +93,16 @@ using RenderProgress = std::function<void(std::string_view, std::uint64_t, std::
 // Throws Error with one line naming the problem.
 [[nodiscard]] RenderResult render(const RenderOptions& options, const RenderProgress& progress);
 
-// Writes into `dir`: <scene>_<method>.png per method, <scene>_<method>_diff.png (eq. 6.2,
-// against the reference), <scene>_scanline.csv (eq. 6.3 along the result's scanline, a column
-// per curve), the figures <scene>_grid.png (labelled rows) and <scene>_scanline.png drawn by
-// scripts/plot.py (sim/render/plot.h), <scene>_metrics.csv and .md. Returns the paths.
-std::vector<std::filesystem::path> write_render_outputs(const RenderResult& r,
-                                                        const std::filesystem::path& dir);
+// Adds to `set` (base/output_file.h: the files appear together on its commit, or not at all):
+// <scene>_<method>.png per method, <scene>_<method>_diff.png (eq. 6.2, against the reference),
+// <scene>_scanline.csv (eq. 6.3 along the result's scanline, a column per curve), the figures
+// <scene>_grid.png (labelled rows) and <scene>_scanline.png drawn by scripts/plot.py
+// (sim/render/plot.h), <scene>_metrics.csv and .md. Returns their paths relative to the set.
+std::vector<std::filesystem::path> write_render_outputs(const RenderResult& r, OutputSet& set);
+
+// The manifest set a scene's render files belong to ("render <scene>"): rendering a scene again
+// into the same directory replaces that scene's files, other scenes' stay.
+[[nodiscard]] std::string render_set_name(const RenderResult& r);
 
 // The metrics table (Markdown) printed by the CLI and written to <scene>_metrics.md.
 [[nodiscard]] std::string metrics_markdown(const RenderResult& r);

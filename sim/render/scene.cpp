@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "base/file_util.h"
+#include "sim/render/teapot.h"
 
 namespace phongsim {
 namespace fs = std::filesystem;
@@ -259,7 +260,11 @@ Scene SceneParser::parse() {
       fail(*mesh, fmt::format("cannot read mesh file '{}'", file.string()));
     }
     sc.mesh = read_mesh(file);
-    if (normalize.value_or(true)) normalize_to_unit_box(sc.mesh);
+    try {
+      if (normalize.value_or(true)) normalize_to_unit_box(sc.mesh);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: {}", file.string(), e.what()));
+    }
   } else {
     const std::string name = string(*builtin, "builtin");
     bool known = false;

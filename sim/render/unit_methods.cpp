@@ -1,0 +1,228 @@
+#include "sim/render/unit_methods.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+
+#include "base/error.h"
+#include "model/kb.h"
+#include "model/kb_setup.h"
+#include "model/lyon.h"
+#include "model/quad.h"
+#include "model/quad_setup.h"
+#include "sim/cosim/harness.h"
+#include "sim/pipelines/registry.h"
+
+namespace phongsim::shading {
+
+Unit::Unit(const std::filesystem::path& config, Backend backend, bool no_build)
+    : cfg_(Config::load(config)),
+      model_(make_model(find_pipeline(cfg_.pipeline()), cfg_)),
+      backend_(backend) {
+  if (backend == Backend::rtl) {
+    const RtlPlugin plugin = locate_rtl(rtl_design(find_pipeline(cfg_.pipeline()), cfg_), *model_,
+                                        no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
+    library_ = RtlLibrary::open(plugin);
+  }
+}
+
+std::vector<std::int64_t> Unit::run(const std::vector<std::int64_t>& vectors,
+                                    const RenderProgress& progress, std::string_view what) {
+  model_->reset();  // the kb engine keeps span state between words
+  const std::size_t n_in = model_->inputs().size();
+  const std::size_t n_out = model_->outputs().size();
+  const std::uint64_t count = vectors.size() / n_in;
+  std::vector<std::int64_t> out;
+  if (backend_ == Backend::model) {
+    constexpr std::uint64_t kStep = 4096;
+    for (std::uint64_t i = 0; i < count; i += kStep) {
+      const std::uint64_t n = std::min(kStep, count - i);
+      (void)model_->eval_batch(std::span(vectors).subspan(i * n_in, n * n_in), out);
+      progress(what, i, count);
+    }
+    return out;
+  }
+  auto dut = library_->create(*model_);
+  std::uint64_t outputs = 0;
+  const HarnessResult r =
+      stream_vectors(*dut, n_in, n_out, vectors, [&](std::span<const std::int64_t> o) {
+        out.insert(out.end(), o.begin(), o.end());
+        if (++outputs % 4096 == 0) progress(what, outputs, 0);
+      });
+  if (r.reason != StopReason::finished || r.inputs != count) {
+    throw Error(fmt::format("{}: the RTL of {} stopped: {}", what, cfg_.origin(),
+                            r.message.empty() ? "not every input was accepted" : r.message));
+  }
+  return out;
+}
+
+Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                 std::string_view what) {
+  const LyonFormats lf = LyonFormats::from_config(unit.config());
+  const auto q = [](double x, fx::Format fmt) {
+    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  std::vector<std::int64_t> words;
+  const std::size_t nl = f.lighting.lights.size();
+  words.reserve(f.fragments.size() * nl * 14);
+  for (const Fragment& fr : f.fragments) {
+    const Vec3 v = f.lighting.v_at(fr.p);
+    const double shin =
+        lf.arrangement == 8 ? root_shininess(fr.shininess) : std::round(fr.shininess);
+    for (const Light& l : f.lighting.lights) {
+      const Vec3 ld = Lighting::l_at(l, fr.p);
+      for (int rep = 0; rep < 2; ++rep) {
+        words.insert(words.end(), {q(fr.n.x, lf.vec), q(fr.n.y, lf.vec), q(fr.n.z, lf.vec)});
+      }
+      words.push_back(0);
+      words.insert(words.end(), {q(v.x, lf.vec), q(v.y, lf.vec), q(v.z, lf.vec)});
+      words.insert(words.end(), {q(ld.x, lf.vec), q(ld.y, lf.vec), q(ld.z, lf.vec)});
+      words.push_back(q(shin, lf.shin));
+    }
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  if (out.size() != f.fragments.size() * nl * 2) {
+    throw Error(fmt::format("{}: the unit returned {} outputs for {} pixels", what, out.size() / 2,
+                            f.fragments.size() * nl));
+  }
+  Image img = blank(f);
+  std::vector<Amounts> a(nl);
+  for (std::size_t i = 0; i < f.fragments.size(); ++i) {
+    for (std::size_t k = 0; k < nl; ++k) {
+      a[k] = {fx::to_real(out[2 * (i * nl + k) + 1], lf.diff),
+              fx::to_real(out[2 * (i * nl + k)], lf.spec)};
+    }
+    const Fragment& fr = f.fragments[i];
+    img.at(fr.x, fr.y) = to_rgb8(combine(fr, f.lighting.lights, a));
+  }
+  return img;
+}
+
+Image vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgress& progress,
+                  std::string_view what) {
+  const QuadFormats qf = QuadFormats::from_config(unit.config());
+  if (qf.sub_bits != kSubBits) {
+    throw Error(fmt::format("{}: the renderer projects with {} subpixel bits; {} has {}", what,
+                            kSubBits, unit.config().origin(), qf.sub_bits));
+  }
+  // The framebuffer's 255 means 1.0, the unit's largest output (255/256 for 0.8) does: colours
+  // go in scaled by that top value, so the output's raw bits are the framebuffer value.
+  const double top = fx::to_real(qf.out.max_raw(), qf.out);
+  const std::vector<bool>& visible = f.visible;
+  std::vector<std::int64_t> words;
+  std::vector<int> tris;
+  std::vector<std::size_t> counts;
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    const auto c = sample_colours(f, static_cast<int>(t));
+    std::array<quad::Coeffs, 3> colour;
+    for (int ch = 0; ch < 3; ++ch) {
+      quad::Samples r;
+      for (int k = 0; k < 6; ++k) r[k] = channel(c[k], ch) * top;
+      colour[ch] = linear ? quad::linear_coefficients(r[0], r[2], r[4]) : quad::coefficients(r);
+    }
+    // Clipped to the image, so the unit emits exactly the triangle's coverage.
+    const auto w =
+        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height}));
+    words.insert(words.end(), w.begin(), w.end());
+    tris.push_back(static_cast<int>(t));
+    counts.push_back(f.coverage[t].size());
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  std::size_t expected = 0;
+  for (const std::size_t c : counts) expected += c;
+  if (out.size() != 5 * expected) {
+    throw Error(fmt::format("{}: the unit emitted {} pixels, coverage says {}", what,
+                            out.size() / 5, expected));
+  }
+  Image img = blank(f);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    for (std::size_t i = 0; i < counts[k]; ++i, at += 5) {
+      const auto x = static_cast<int>(out[at]);
+      const auto y = static_cast<int>(out[at + 1]);
+      if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
+      if (!f.shows(static_cast<std::size_t>(tris[k]), x, y)) continue;
+      const double full = static_cast<double>(qf.out.max_raw());
+      img.at(x, y) =
+          to_rgb8({static_cast<double>(out[at + 2]) / full, static_cast<double>(out[at + 3]) / full,
+                   static_cast<double>(out[at + 4]) / full});
+    }
+  }
+  return img;
+}
+
+// The channel values are scaled by the output's top value, like the quadratic unit's (vertex_unit).
+Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::string_view what) {
+  const KbFormats kf = KbFormats::from_config(unit.config());
+  const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
+  const double top = fx::to_real(kf.out.max_raw(), kf.out);
+  const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * f.material.shininess);
+  const std::vector<bool>& visible = f.visible;
+  std::vector<std::int64_t> words;
+  struct Placed {
+    int tri, y, x0, x1;
+  };
+  std::vector<Placed> placed;
+  for (std::size_t t = 0; t < visible.size(); ++t) {
+    if (!visible[t]) continue;
+    for (const Span& e : spans_of(f, t)) {
+      const int length = e.x1 - e.x0 + 1;
+      const double per_pixel = length == 1 ? 0.0 : 1.0 / (length - 1);
+      // Per light: the diffuse and specular one-vector angles (the same for every channel).
+      std::vector<std::pair<kb::ScanlineAngles, kb::ScanlineAngles>> angles;
+      for (const Light& l : f.lighting.lights) {
+        const KbLightEnds le = kb_light_ends(f, l, e);
+        angles.emplace_back(kb::one_vector(e.n1, e.n2, le.l1, le.l2),
+                            kb::one_vector(e.n1, e.n2, le.h1, le.h2));
+      }
+      for (int ch = 0; ch < 3; ++ch) {
+        KbSpan span;
+        span.length = length;
+        span.terms.push_back({0, 0, ab1, channel(f.material.ambient, ch) * top});
+        for (std::size_t k = 0; k < angles.size(); ++k) {
+          const Light& l = f.lighting.lights[k];
+          const auto& [d, s] = angles[k];
+          const double lc = channel(l.colour, ch) * top;
+          span.terms.push_back({d.theta0, d.dtheta * per_pixel, ab1,
+                                lc * channel(f.material.diffuse, ch) * std::max(d.scale, 0.0)});
+          span.terms.push_back({s.theta0, s.dtheta * per_pixel, abn,
+                                lc * channel(f.material.specular, ch) *
+                                    std::pow(std::max(s.scale, 0.0), 4 * f.material.shininess)});
+        }
+        for (const auto& w : kb_program(span, so.policy, kf))
+          words.insert(words.end(), w.begin(), w.end());
+      }
+      placed.push_back({static_cast<int>(t), e.y, e.x0, e.x1});
+    }
+  }
+  const std::vector<std::int64_t> out = unit.run(words, progress, what);
+  std::size_t expected = 0;
+  for (const Placed& p : placed) expected += 3 * static_cast<std::size_t>(p.x1 - p.x0 + 1);
+  if (out.size() != 2 * expected) {
+    throw Error(fmt::format("{}: the engine emitted {} pixels, the spans have {}", what,
+                            out.size() / 2, expected));
+  }
+  Image img = blank(f);
+  const double full = static_cast<double>(kf.out.max_raw());
+  std::size_t at = 0;
+  for (const Placed& p : placed) {
+    const std::size_t length = static_cast<std::size_t>(p.x1 - p.x0 + 1);
+    for (std::size_t i = 0; i < length; ++i) {
+      const int x = p.x0 + static_cast<int>(i);
+      if (!f.shows(static_cast<std::size_t>(p.tri), x, p.y)) continue;
+      const auto value = [&](int ch) {
+        return static_cast<double>(out[at + 2 * (static_cast<std::size_t>(ch) * length + i)]) /
+               full;
+      };
+      img.at(x, p.y) = to_rgb8({value(0), value(1), value(2)});
+    }
+    at += 2 * 3 * length;
+  }
+  return img;
+}
+
+}  // namespace phongsim::shading

@@ -1,0 +1,65 @@
+// The renderer's methods that run on a hardware unit (docs/render.md, "Methods and backends"):
+// a unit is one configuration's bit-accurate model or Verilated RTL, and a method feeds it one of
+// three kinds of transactions — per pixel and light (the Lyon units), one program per triangle
+// (the quadratic interpolator) or one program per span and channel (the Kuijk–Blake engine).
+// Internal to the renderer (sim/render/render.cpp chooses the method and the backend).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "model/config.h"
+#include "model/pipeline.h"
+#include "sim/cosim/rtl_plugin.h"
+#include "sim/render/frame.h"
+#include "sim/render/image.h"
+#include "sim/render/render.h"
+
+namespace phongsim::shading {
+
+// Lyon's root-shininess unit (Fig. 8) takes m = round(sqrt(n)) and so shades with m^2, not n;
+// the float Fig. 8 methods shade the same way.
+[[nodiscard]] inline double root_shininess(double n) { return std::round(std::sqrt(n)); }
+
+// One configuration's model or Verilated RTL (located, built on demand unless `no_build`).
+class Unit {
+ public:
+  Unit(const std::filesystem::path& config, Backend backend, bool no_build);
+
+  [[nodiscard]] const Config& config() const { return cfg_; }
+  [[nodiscard]] const PipelineModel& model() const { return *model_; }
+
+  // Every output of `vectors` (flattened raw inputs), in order.
+  std::vector<std::int64_t> run(const std::vector<std::int64_t>& vectors,
+                                const RenderProgress& progress, std::string_view what);
+
+ private:
+  Config cfg_;
+  std::unique_ptr<PipelineModel> model_;
+  Backend backend_;
+  std::shared_ptr<RtlLibrary> library_;
+};
+
+// Per-pixel methods through a Lyon unit: one transaction per pixel and light, with
+// N0 = N1 = the interpolated normal (not normalized: the unit's g-normalization does that) and
+// a = 0; V and L unit vectors; shininess n (arrangement 8: m = round(sqrt(n))).
+[[nodiscard]] Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                               std::string_view what);
+
+// Vertex methods through the quadratic unit: one program per triangle with a visible pixel
+// (`linear`, Gouraud: the plane through the vertex colours; else the quadratic through the six
+// samples); the unit's pixels are kept where the triangle is the visible surface.
+[[nodiscard]] Image vertex_unit(bool linear, const Frame& f, Unit& unit,
+                                const RenderProgress& progress, std::string_view what);
+
+// The one-vector method (Kuijk–Blake eq. 4) through the Kuijk–Blake engine: per span and colour
+// channel one program whose terms are the ambient (a constant: angle 0, rate 0), and per light
+// the diffuse and the specular one-vector terms scaled by the light's and the material's colour.
+[[nodiscard]] Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                            std::string_view what);
+
+}  // namespace phongsim::shading
