@@ -239,11 +239,12 @@ void add_bench(CLI::App& app, Action& action) {
   c->vectors_opt = add_count(*cmd, "--vectors", c->vectors,
                              "a pipeline's benchmark: vectors per measurement (held in memory)",
                              kMaxBenchVectors, 1);
-  c->jobs_opt = cmd->add_option("--jobs", c->jobs,
-                  "a pipeline's benchmark: also time the co-simulation with this many workers "
-                  "(cosim --jobs)")
-      ->check(CLI::Range(1U, 256U))
-      ->capture_default_str();
+  c->jobs_opt =
+      cmd->add_option("--jobs", c->jobs,
+                      "a pipeline's benchmark: also time the co-simulation with this many workers "
+                      "(cosim --jobs)")
+          ->check(CLI::Range(1U, 256U))
+          ->capture_default_str();
   c->size_opt = add_int(*cmd, "--size,--radius", c->size,
                         "bench render and bench methods: as phongsim render --size — shinyballs' "
                         "sphere radius (bench render: 85, a 511-pixel-wide strip), a mesh "

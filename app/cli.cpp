@@ -266,4 +266,78 @@ void install_tool_progress() {
   });
 }
 
+std::string xml_escaped(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        // XML 1.0 allows no control characters but tab and newlines.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+          out += '?';
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out;
+}
+
+// JUnit XML as CI systems read it: one testsuite per pipeline, one testcase per run, the
+// first-failure report as the failure's text.
+std::string junit_xml(std::span<const CosimRun> runs) {
+  std::size_t failures = 0;
+  double seconds = 0;
+  for (const CosimRun& r : runs) {
+    failures += r.report.passed ? 0 : 1;
+    seconds += r.seconds;
+  }
+  std::string x = fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<testsuites name=\"phongsim cosim\" tests=\"{}\" failures=\"{}\" time=\"{:.3f}\">\n",
+      runs.size(), failures, seconds);
+  for (std::size_t i = 0; i < runs.size();) {
+    std::size_t j = i;
+    std::size_t suite_failures = 0;
+    double suite_seconds = 0;
+    while (j < runs.size() && runs[j].report.pipeline == runs[i].report.pipeline) {
+      suite_failures += runs[j].report.passed ? 0 : 1;
+      suite_seconds += runs[j].seconds;
+      ++j;
+    }
+    x += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" time=\"{:.3f}\">\n",
+                     xml_escaped(runs[i].report.pipeline), j - i, suite_failures, suite_seconds);
+    for (; i < j; ++i) {
+      const CosimReport& r = runs[i].report;
+      x += fmt::format(
+          "    <testcase classname=\"{}.{}\" name=\"source {} sink {} seed {}\" time=\"{:.3f}\">\n",
+          xml_escaped(r.pipeline), xml_escaped(r.config_name), xml_escaped(r.options.source.str()),
+          xml_escaped(r.options.sink.str()), r.options.seed, runs[i].seconds);
+      if (!r.passed) {
+        x += fmt::format("      <failure type=\"{}\" message=\"{}\">{}</failure>\n",
+                         xml_escaped(r.failure_kind), xml_escaped(r.summary()),
+                         xml_escaped(r.failure));
+      }
+      x += fmt::format("      <system-out>{}</system-out>\n    </testcase>\n",
+                       xml_escaped(r.summary()));
+    }
+    x += "  </testsuite>\n";
+  }
+  return x + "</testsuites>\n";
+}
+
 }  // namespace phongsim::cli

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -109,5 +110,18 @@ using Progress = std::function<void(std::string_view, std::uint64_t, std::uint64
 // Progress of the helper programs phongsim waits for (Verilation through cmake, Yosys, nextpnr)
 // on a terminal: the program, its elapsed time and, for a build, ninja's [done/total].
 void install_tool_progress();
+
+// One co-simulation of a command (cosim's matrix, sweep search's verification) and its time.
+struct CosimRun {
+  CosimReport report;
+  double seconds = 0;
+};
+
+// Text for XML (&, <, >, ", ').
+[[nodiscard]] std::string xml_escaped(std::string_view text);
+
+// JUnit XML as CI systems read it: one testsuite per pipeline, one testcase per run, the
+// first-failure report as the failure's text (docs/cosim.md).
+[[nodiscard]] std::string junit_xml(std::span<const CosimRun> runs);
 
 }  // namespace phongsim::cli

@@ -102,85 +102,6 @@ std::vector<std::string> split_commas(const std::string& text) {
   return parts;
 }
 
-std::string xml_escaped(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        // XML 1.0 allows no control characters but tab and newlines.
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') {
-          out += '?';
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out;
-}
-
-struct Run {
-  CosimReport report;
-  double seconds = 0;
-};
-
-// JUnit XML as CI systems read it: one testsuite per pipeline, one testcase per run, the
-// first-failure report as the failure's text.
-std::string junit_xml(const std::vector<Run>& runs) {
-  std::size_t failures = 0;
-  double seconds = 0;
-  for (const Run& r : runs) {
-    failures += r.report.passed ? 0 : 1;
-    seconds += r.seconds;
-  }
-  std::string x = fmt::format(
-      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      "<testsuites name=\"phongsim cosim\" tests=\"{}\" failures=\"{}\" time=\"{:.3f}\">\n",
-      runs.size(), failures, seconds);
-  for (std::size_t i = 0; i < runs.size();) {
-    std::size_t j = i;
-    std::size_t suite_failures = 0;
-    double suite_seconds = 0;
-    while (j < runs.size() && runs[j].report.pipeline == runs[i].report.pipeline) {
-      suite_failures += runs[j].report.passed ? 0 : 1;
-      suite_seconds += runs[j].seconds;
-      ++j;
-    }
-    x += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" time=\"{:.3f}\">\n",
-                     xml_escaped(runs[i].report.pipeline), j - i, suite_failures, suite_seconds);
-    for (; i < j; ++i) {
-      const CosimReport& r = runs[i].report;
-      x += fmt::format(
-          "    <testcase classname=\"{}.{}\" name=\"source {} sink {} seed {}\" time=\"{:.3f}\">\n",
-          xml_escaped(r.pipeline), xml_escaped(r.config_name), xml_escaped(r.options.source.str()),
-          xml_escaped(r.options.sink.str()), r.options.seed, runs[i].seconds);
-      if (!r.passed) {
-        x += fmt::format("      <failure type=\"{}\" message=\"{}\">{}</failure>\n",
-                         xml_escaped(r.failure_kind), xml_escaped(r.summary()),
-                         xml_escaped(r.failure));
-      }
-      x += fmt::format("      <system-out>{}</system-out>\n    </testcase>\n",
-                       xml_escaped(r.summary()));
-    }
-    x += "  </testsuite>\n";
-  }
-  return x + "</testsuites>\n";
-}
-
 int run(CosimCli& c) {
   std::vector<std::string> configs = c.target.configs;
   if (configs.empty()) configs.emplace_back();  // the pipeline's default configuration
@@ -232,7 +153,7 @@ int run(CosimCli& c) {
     }
   }
   const Progress progress = progress_line();
-  std::vector<Run> runs;
+  std::vector<CosimRun> runs;
   for (std::size_t k = 0; k < loaded.size(); ++k) {
     const Loaded& l = loaded[k];
     o.random_vectors =
@@ -251,7 +172,7 @@ int run(CosimCli& c) {
                                              l.cfg.name(), source.str(), sink.str());
         o.progress = [&](std::uint64_t done, std::uint64_t all) { progress(what, done, all); };
         const auto start = std::chrono::steady_clock::now();
-        Run r{cosim(subject, o), 0};
+        CosimRun r{cosim(subject, o), 0};
         progress(what, 1, 1);
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (trace_file) {
@@ -274,13 +195,13 @@ int run(CosimCli& c) {
     }
   }
   std::size_t failed = 0;
-  for (const Run& r : runs) failed += r.report.passed ? 0 : 1;
+  for (const CosimRun& r : runs) failed += r.report.passed ? 0 : 1;
   if (json.wanted()) {
     nlohmann::ordered_json j = json_document("cosim");
     j["passed"] = failed == 0;
     j["runs_passed"] = runs.size() - failed;
     j["runs"] = nlohmann::ordered_json::array();
-    for (const Run& r : runs) j["runs"].push_back(to_json(r.report, r.seconds));
+    for (const CosimRun& r : runs) j["runs"].push_back(to_json(r.report, r.seconds));
     json.write(j);
   }
   if (junit_file) {

@@ -3,7 +3,9 @@
 // subcommand of its own (its own --help).
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "app/commands.h"
 #include "app/json.h"
@@ -87,7 +89,7 @@ int run_point(const PointCli& c) {
 }
 
 struct SearchCli {
-  std::string file, out, json;
+  std::string file, out, json, junit;
   bool verify = true;
 };
 
@@ -98,8 +100,17 @@ int run_search(const SearchCli& c) {
   const fs::path dest = c.out.empty()
                             ? data_root() / "configs" / base.pipeline() / (spec.name + ".toml")
                             : fs::path(c.out);
-  check_distinct({{"--out", dest}, {"--json", c.json}, {"SEARCH", c.file}, {"base", spec.base}});
+  if (!c.junit.empty() && !c.verify)
+    throw Error("--junit reports the verification: not with --no-verify");
+  check_distinct({{"--out", dest},
+                  {"--json", c.json},
+                  {"--junit", c.junit},
+                  {"SEARCH", c.file},
+                  {"base", spec.base}});
   JsonOutput json(c.json);
+  std::optional<OutputFile> junit_file;
+  if (!c.junit.empty()) junit_file.emplace(c.junit);
+  if (junit_file && junit_file->is_stdout()) throw Error("--junit -: give --junit a file");
   OutputFile found(dest);  // unwritable: fail before the search
   std::FILE* const text = found.is_stdout() ? stderr : json.text();
   const Progress progress = progress_line();
@@ -148,8 +159,15 @@ int run_search(const SearchCli& c) {
       progress("search: verifying", done, all);
     };
     const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
+    const auto start = std::chrono::steady_clock::now();
     const CosimReport rep = cosim(subject_of(l, t, stimulus), o);
     progress("search: verifying", 1, 1);
+    if (junit_file) {  // written whether the verification passes or not
+      const CosimRun run{
+          rep, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+      std::fputs(junit_xml(std::span(&run, 1)).c_str(), junit_file->get());
+      junit_file->commit();
+    }
     if (!rep.passed) {
       fmt::print(text, "{}", rep.failure);
       throw Error(fmt::format("the found configuration fails co-simulation; not written to {}",
@@ -215,6 +233,8 @@ void add_sweep(CLI::App& app, Action& action) {
                 "name>.toml; - is standard output; --write: the same, its older name)");
   s->add_option("--json", search->json,
                 "also write the result as JSON (docs/json.md; - is standard output)");
+  s->add_option("--junit", search->junit,
+                "write the verification's co-simulation as JUnit XML (as cosim --junit)");
   s->add_flag("!--no-verify", search->verify,
               "skip Verilating and co-simulating the found configuration");
   s->callback([search, &action]() { action = [search]() { return run_search(*search); }; });

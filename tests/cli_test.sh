@@ -472,9 +472,20 @@ EOT
   sweep-search)
     # The search finds a configuration, Verilates and co-simulates it (10^6 vectors), writes it.
     "$phongsim" sweep search "$src/sweeps/lirp-search.toml" --write "$tmp/found.toml" \
-      >"$tmp/stdout" 2>&1 || fail "search: $(cat "$tmp/stdout")"
+      --junit "$tmp/search.xml" >"$tmp/stdout" 2>&1 || fail "search: $(cat "$tmp/stdout")"
     grep -q "^verified: PASS lirp/found: 1001859 vectors" "$tmp/stdout" ||
       fail "not verified: $(cat "$tmp/stdout")"
+    # Issue 14: --junit on every command that co-simulates: the verification as one testcase.
+    python3 - "$tmp/search.xml" <<'EOT' || fail "search --junit: $(cat "$tmp/search.xml")"
+import sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+cases = root.findall("./testsuite/testcase")
+assert root.get("tests") == "1" and root.get("failures") == "0" and len(cases) == 1, root.attrib
+assert cases[0].get("classname") == "lirp.found", cases[0].attrib
+EOT
+    "$phongsim" sweep search "$src/sweeps/lirp-search.toml" --write "$tmp/x.toml" --no-verify \
+      --junit "$tmp/x.xml" >"$tmp/stdout" 2>&1 && fail "--junit with --no-verify accepted"
+    [ ! -e "$tmp/x.xml" ] && [ ! -e "$tmp/x.toml" ] || fail "a refused search left files"
     grep -q 'p = .S1.8.' "$tmp/found.toml" || fail "found: $(cat "$tmp/found.toml")"
     "$phongsim" cosim --config "$tmp/found.toml" --vectors 1000 >/dev/null 2>&1 ||
       fail "the written configuration does not load"

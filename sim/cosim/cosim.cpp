@@ -178,7 +178,8 @@ class Scoreboard {
       detail.vector = index(front_);
       detail.output = seen_;
       detail.outputs_of_vector = owed(front_);
-      for (std::size_t i = 0; i < ins.size(); ++i) detail.inputs.push_back(field_value(ins[i], in[i]));
+      for (std::size_t i = 0; i < ins.size(); ++i)
+        detail.inputs.push_back(field_value(ins[i], in[i]));
       for (std::size_t i = 0; i < n; ++i) {
         detail.outputs.push_back({outs[i].name, outs[i].fmt.str(), field_value(outs[i], want[i]),
                                   field_value(outs[i], got[i]), want[i] != got[i]});
