@@ -3,6 +3,9 @@
 #   tests/icarus_test.sh BUILD_DIR PIPELINE   the pipeline's default configuration under random
 #                                             source and sink stalls through Icarus: PASS
 #   tests/icarus_test.sh BUILD_DIR wrong      examples/your-rtl's deliberately wrong LIRP: FAIL
+#   tests/icarus_test.sh BUILD_DIR ports      a LIRP whose output port is a bit narrower than the
+#                                             contract: refused before simulating (Icarus would
+#                                             only warn and connect what fits)
 #   tests/icarus_test.sh BUILD_DIR x          a LIRP whose y component is X: an X/Z error (a
 #                                             two-state simulator would see some value)
 set -uo pipefail
@@ -18,6 +21,16 @@ case "$2" in
     rc=$?
     printf '%s\n' "$out"
     [ $rc -eq 1 ] && grep -q "^FAIL lirp/default" <<<"$out" && grep -q -- "--simulator icarus" <<<"$out"
+    ;;
+  ports)
+    sed 's/output logic \[3\*OW-1:0\] out_p_o/output logic [3*OW-2:0] out_p_o/' \
+      "$src/examples/your-rtl/my_lirp.sv" >"$tmp/my_lirp.sv"
+    grep -q "3\*OW-2:0" "$tmp/my_lirp.sv" || { echo "the narrow variant was not made"; exit 1; }
+    out=$("$phongsim" cosim lirp --simulator icarus --rtl "$tmp/my_lirp.sv" --top my_lirp \
+      "${stalls[@]}" 2>&1)
+    rc=$?
+    printf '%s\n' "$out"
+    [ $rc -eq 2 ] && grep -q "port out_p_o of my_lirp is 35 bits wide, the contract says 36" <<<"$out" && ! grep -q "^PASS" <<<"$out"
     ;;
   x)
     sed 's/assign out_p_o\[c\*OW+:OW\] = p_q;/assign out_p_o[c*OW+:OW] = c == 1 ? {OW{1'"'"'bx}} : p_q;/' \

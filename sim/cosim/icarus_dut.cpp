@@ -226,6 +226,10 @@ class IcarusDut final : public RtlDut {
   }
 
   void unpack(const std::string& hex, const IcarusPort& p) {
+    if (hex.size() != static_cast<std::size_t>((p.width + 3) / 4)) {
+      throw Error(fmt::format("icarus: cycle {}: {} printed {} digits, not {}", cycle_, p.name,
+                              hex.size(), (p.width + 3) / 4));
+    }
     if (hex.find_first_not_of("0123456789abcdef") != std::string::npos) {
       throw Error(fmt::format("icarus: cycle {}: {} is {} while out_valid_o (X or Z)", cycle_,
                               p.name, hex));
@@ -257,6 +261,7 @@ class IcarusDut final : public RtlDut {
 }  // namespace
 
 DutFactory icarus_duts(const RtlDesign& design, const PipelineModel& model, std::FILE* log) {
+  (void)check_ports(design, model);  // the port contract, as for a Verilator build
   auto build = std::make_shared<IcarusBuild>();
   build->in = ports_of(design, model.inputs(), true);
   build->out = ports_of(design, model.outputs(), false);

@@ -17,8 +17,9 @@
 
 namespace phongsim {
 
-// Compiles `design` (errors from iverilog in the Error, one line each) into a temporary
-// directory that lives as long as the factory; each DUT is one vvp process. `model` must
+// Checks the design's ports against the contract (check_ports: one line naming the first
+// difference), then compiles `design` (errors from iverilog in the Error, one line each) into a
+// temporary directory that lives as long as the factory; each DUT is one vvp process. `model` must
 // outlive the factory.
 [[nodiscard]] DutFactory icarus_duts(const RtlDesign& design, const PipelineModel& model,
                                      std::FILE* log);
