@@ -204,8 +204,26 @@ CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimul
 
 bool progress_shown() { return isatty(STDERR_FILENO) != 0; }
 
+// Seconds a task runs before its progress line appears: PHONGSIM_PROGRESS_AFTER, else 2 (short
+// runs stay quiet). An unusable value is refused once, naming it.
+double progress_after() {
+  static const double after = [] {
+    const char* v = std::getenv("PHONGSIM_PROGRESS_AFTER");
+    if (v == nullptr) return 2.0;
+    char* end = nullptr;
+    const double x = std::strtod(v, &end);
+    if (end == v || *end != '\0' || !(x >= 0 && x <= 86400)) {
+      throw Error(
+          fmt::format("PHONGSIM_PROGRESS_AFTER='{}' is not a number of seconds (0..86400)", v));
+    }
+    return x;
+  }();
+  return after;
+}
+
 Progress progress_line(bool quiet) {
   if (quiet || !progress_shown()) return [](std::string_view, auto, auto) {};
+  const auto after = std::chrono::duration<double>(progress_after());
   using Clock = std::chrono::steady_clock;
   struct State {
     Clock::time_point start = Clock::now();
@@ -213,15 +231,14 @@ Progress progress_line(bool quiet) {
     bool shown = false;
   };
   auto state = std::make_shared<State>();
-  return [state](std::string_view what, std::uint64_t done, std::uint64_t total) {
+  return [state, after](std::string_view what, std::uint64_t done, std::uint64_t total) {
     const auto now = Clock::now();
     if (done == total && total != 0) {  // finished: clear the line if one is shown
       if (state->shown) fmt::print(stderr, "\r\033[K");
       state->shown = false;
       return;
     }
-    if (now - state->start < std::chrono::seconds(2) ||
-        now - state->last < std::chrono::milliseconds(200)) {
+    if (now - state->start < after || now - state->last < std::chrono::milliseconds(200)) {
       return;
     }
     state->last = now;
@@ -237,14 +254,15 @@ Progress progress_line(bool quiet) {
 
 void install_tool_progress() {
   if (!progress_shown()) return;
-  set_wait_hook([shown = false](const std::vector<std::string>& argv, double seconds,
-                                const fs::path& log) mutable {
+  set_wait_hook([shown = false, after = progress_after()](const std::vector<std::string>& argv,
+                                                          double seconds,
+                                                          const fs::path& log) mutable {
     if (seconds < 0) {
       if (shown) fmt::print(stderr, "\r\033[K");
       shown = false;
       return;
     }
-    if (seconds < 2) return;
+    if (seconds < after) return;
     std::string what = fs::path(argv.front()).filename().string();
     if (what == "cmake" || what == fs::path(cmake_program()).filename().string()) {
       const bool build = std::find(argv.begin(), argv.end(), "--build") != argv.end();

@@ -89,7 +89,6 @@ int print_version() {
 int main(int argc, char** argv) {
   using namespace phongsim::cli;
   phongsim::install_signal_cleanup();
-  install_tool_progress();
   CLI::App app{
       "phongsim: co-simulates fixed-point pixel-shading RTL against its bit-accurate "
       "C++ model.\nExit status: 0 ok, 1 verification failure, 2 bad input; 130/143 when "
@@ -113,6 +112,7 @@ int main(int argc, char** argv) {
   add_contract(app, action);
 
   try {
+    install_tool_progress();
     // Housekeeping first: temporaries of phongsim processes that were killed outright.
     phongsim::sweep_stale_temporaries(
         {phongsim::rtl_cache_dir(), phongsim::rtl_cache_dir() / "synth"});
