@@ -43,6 +43,28 @@ nlohmann::ordered_json metrics_json(const ImageMetrics& m) {
           {"pixels", m.pixels}};
 }
 
+double frame_rate(const FrameReport& f) {
+  return f.cycles.cycles == 0 ? 0.0 : static_cast<double>(f.pixels) / f.cycles.cycles;
+}
+
+// The frame's clocks per method on a hardware unit (docs/system.md); empty when none ran on one.
+std::string frame_table(const RenderResult& r) {
+  std::string t;
+  for (const MethodResult& m : r.results) {
+    if (!m.frame) continue;
+    if (t.empty()) {
+      t = "\nClocks of the frame on each method's unit (RTL: measured; model: the cycle model)\n"
+          "| method | backend | cycles | pixels | pixels/clock | outputs | fill | setup | "
+          "empty rows | stalls |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    }
+    const FrameCycles& c = m.frame->cycles;
+    t += fmt::format("| {} | {} | {} | {} | {:.3f} | {} | {} | {} | {} | {} |\n", m.method,
+                     backend_name(m.backend), c.cycles, m.frame->pixels, frame_rate(*m.frame),
+                     c.outputs, c.fill_cycles, c.setup_cycles, c.empty_row_cycles, c.stall_cycles);
+  }
+  return t;
+}
+
 int run(RenderCli c) {
   c.options.backend = parse_backend(c.backend);
   c.options.terms = parse_terms(c.terms);
@@ -86,6 +108,19 @@ int run(RenderCli c) {
     method.update(metrics_json(m.metrics));
     method["seconds"] = m.seconds;
     method["cpu_seconds"] = m.cpu_seconds;
+    if (m.frame) {
+      const FrameCycles& c = m.frame->cycles;
+      method["frame"] = {{"cycles", c.cycles},
+                         {"pixels", m.frame->pixels},
+                         {"pixels_per_clock", frame_rate(*m.frame)},
+                         {"outputs", c.outputs},
+                         {"fill_cycles", c.fill_cycles},
+                         {"setup_cycles", c.setup_cycles},
+                         {"empty_row_cycles", c.empty_row_cycles},
+                         {"stall_cycles", c.stall_cycles}};
+    } else {
+      method["frame"] = nullptr;
+    }
     method["regions"] = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < r.regions.size() && i < m.region_metrics.size(); ++i) {
       nlohmann::ordered_json region{{"region", r.regions[i].first}};
@@ -102,6 +137,7 @@ int run(RenderCli c) {
   fmt::print(text, "{}: {} x {} pixels ({} object pixels), reference {} (float){}\n{}", r.scene,
              r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
              r.reference.method, r.settings, metrics_markdown(r));
+  fmt::print(text, "{}", frame_table(r));
   fmt::print(text, "wrote {} files to {} (grid: {})\n", files.size(), c.out_dir,
              (fs::path(c.out_dir) / (r.scene + "_grid.png")).string());
   return 0;

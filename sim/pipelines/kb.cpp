@@ -142,6 +142,9 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
   d.push_back(event(2, one, one, true));
   d.push_back(event(3, one, one, true));
   d.push_back(event(4095, one, one, true));
+  // The span's last event on its last pixel: the next header is read a cycle later.
+  d.push_back(header(3, 1, one / 4, one / 32, 0));
+  d.push_back(event(3, -(one / 8), 0, true));
   // A one-pixel span with more event words than pixels, then back-to-back one-pixel spans.
   d.push_back(header(0, 2, one, 0, 0));
   d.push_back(event(0, 0, 0, false));
@@ -268,6 +271,55 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
 }
 
 int latency(const Config&) { return 2; }  // header word to its first pixel (docs/kb.md)
+
+// kb_engine's control, cycle by cycle (its signal names), with the source offering a word every
+// cycle and the sink always ready: the word accepted in cycle 0 is the head from cycle 1; a pixel
+// leaves through the output register the cycle after it fires.
+FrameCycles cycles(const Config&, std::span<const std::int64_t> in, std::span<const std::int64_t>,
+                   std::span<const std::uint32_t> counts) {
+  const std::size_t words = counts.size(), fields = words == 0 ? 0 : in.size() / words;
+  const auto field = [&](std::size_t w, std::size_t k) { return in[w * fields + k]; };
+  FrameCycles now, at_last;  // at_last: as of the last pixel so far
+  std::uint64_t last_fire = 0;
+  bool running = false;
+  std::int64_t remaining = 0, i = 0, last = 0;
+  std::size_t head = 0;
+  for (std::uint64_t t = 1;; ++t) {
+    const bool head_valid = head < words;
+    if (!head_valid && (!running || remaining != 0)) break;  // nothing left to do
+    const bool fire = running && (remaining == 0 || head_valid);
+    const bool apply = fire && remaining != 0 && field(head, 0) <= i;
+    const bool is_last = i == last;
+    const std::int64_t remaining_after = remaining - (apply ? 1 : 0);
+    const bool take =
+        head_valid && !apply && remaining_after == 0 && (!running || (fire && is_last));
+    const bool drain = head_valid && !running && remaining != 0;
+    if (fire) {
+      ++now.outputs;
+      last_fire = t;
+      at_last = now;
+    } else {
+      ++now.setup_cycles;  // a header read or a left-over event word dropped
+    }
+    if (take) {
+      running = true;
+      remaining = field(head, 1);
+      i = 0;
+      last = field(head, 0);
+    } else if (fire) {
+      running = !is_last;
+      remaining = remaining_after;
+      ++i;
+    } else if (drain) {
+      --remaining;
+    }
+    if (apply || take || drain) ++head;
+  }
+  if (at_last.outputs == 0) return {};
+  at_last.fill_cycles = 2;  // the input and output registers
+  at_last.cycles = last_fire + 2;
+  return at_last;
+}
 
 // configs/kb/default.toml's engine by hand: acc S2.32 (35-bit adders, wrapping), out 0.8 rounded
 // half_even from the accumulator clamped to [0, 1]. The control is KbModel's.
@@ -450,6 +502,7 @@ const PipelineInfo& kb_pipeline() {
       .default_vectors = 100000,
       .latency = latency,
       .one_per_clock = true,
+      .cycles = cycles,
       .stages = stages,
       .native = native,
       .float_error = float_error,

@@ -440,6 +440,11 @@ const PipelineInfo& lyon_pipeline() {
       .default_vectors = 1000000,
       .latency = latency,
       .one_per_clock = true,
+      .cycles =
+          [](const Config& cfg, std::span<const std::int64_t>, std::span<const std::int64_t>,
+             std::span<const std::uint32_t> counts) {
+            return one_per_clock_cycles(latency(cfg), counts.size());
+          },
       .stages = stages,
       .native = native,
       .float_error = float_error,

@@ -188,6 +188,46 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
 
 int latency(const Config&) { return 4; }  // program to its first pixel (docs/quad.md)
 
+// quad_walker's state machine, with the source offering a program every cycle and the sink
+// always ready: the program accepted in cycle 0 is loaded in cycle 1 (Idle); after that a
+// program is loaded in the cycle its predecessor's last row ends, or in an Idle cycle after a
+// program without rows. Each row costs a Row cycle and one cycle per covered pixel (the model's
+// outputs say which); a pixel leaves through the output register the cycle after it fires.
+FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
+                   std::span<const std::int64_t> out, std::span<const std::uint32_t> counts) {
+  const std::size_t programs = counts.size(), fields = programs == 0 ? 0 : in.size() / programs;
+  constexpr std::size_t kOutFields = 5;  // x, y, r, g, b
+  FrameCycles now, at_last;              // at_last: as of the last pixel so far
+  std::uint64_t t = 1, last_fire = 0;
+  std::size_t pixel = 0;  // the next output
+  bool loaded = false;    // the next program is loaded without an Idle cycle
+  for (std::size_t k = 0; k < programs; ++k) {
+    if (!loaded) {
+      ++now.setup_cycles;
+      ++t;
+    }
+    const std::int64_t y0 = in[k * fields + 1], y1 = in[k * fields + 3];
+    const std::size_t end = pixel + counts[k];
+    loaded = y0 <= y1;
+    for (std::int64_t y = y0; y <= y1; ++y) {
+      std::uint64_t w = 0;
+      while (pixel + w < end && out[(pixel + w) * kOutFields + 1] == y) ++w;
+      ++(w == 0 ? now.empty_row_cycles : now.setup_cycles);
+      ++t;
+      if (w == 0) continue;
+      now.outputs += w;
+      t += w;
+      pixel += w;
+      last_fire = t - 1;
+      at_last = now;
+    }
+  }
+  if (at_last.outputs == 0) return {};
+  at_last.fill_cycles = 2;  // the input and output registers
+  at_last.cycles = last_fire + 2;
+  return at_last;
+}
+
 // configs/quad/default.toml's walker by hand: acc S2.32 (35-bit sums, wrapping), out 0.8 rounded
 // half_even from the accumulator clamped to [0, 1], sub_bits 4 (DDA quotient 34 bits, remainder
 // 20). The walk is QuadModel's.
@@ -367,6 +407,7 @@ const PipelineInfo& quad_pipeline() {
       .latency = latency,
       // One cycle per row on span set-up: below one pixel per clock by design (docs/quad.md).
       .one_per_clock = false,
+      .cycles = cycles,
       .stages = stages,
       .native = native,
       .float_error = float_error,

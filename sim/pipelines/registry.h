@@ -15,6 +15,7 @@
 
 #include "model/config.h"
 #include "model/pipeline.h"
+#include "sim/cosim/frame_cycles.h"
 #include "sim/cosim/report.h"
 #include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stimulus.h"
@@ -75,6 +76,11 @@ struct PipelineInfo {
   int (*latency)(const Config& cfg);
   // True when phongsim's RTL takes one input and gives one output per clock, stall-free.
   bool one_per_clock;
+  // The cycle model: the stall-free FrameCycles of the stream `in` through phongsim's RTL from
+  // reset, from the stream and the model's outputs for it (`out`; `counts`: each vector's
+  // number of outputs) — what the RTL measures, exactly (tests/pipeline_test.cpp), without it.
+  FrameCycles (*cycles)(const Config& cfg, std::span<const std::int64_t> in,
+                        std::span<const std::int64_t> out, std::span<const std::uint32_t> counts);
   // Every stage value of one input vector (evaluated like eval(): stateful models advance).
   std::vector<StageValue> (*stages)(PipelineModel& model, std::span<const std::int64_t> in);
 

@@ -568,7 +568,13 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
     progress(what, 0, f.fragments.size());
     const std::clock_t cpu = std::clock();
     const auto start = std::chrono::steady_clock::now();
-    r.image = b == Backend::float_ref ? float_image(m) : unit_image(m, b, what);
+    if (b == Backend::float_ref) {
+      r.image = float_image(m);
+    } else {
+      UnitImage u = unit_image(m, b, what);
+      r.image = std::move(u.image);
+      r.frame = u.frame;
+    }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.cpu_seconds = static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC;
     progress(what, f.fragments.size(), f.fragments.size());

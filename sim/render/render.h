@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "base/output_file.h"
 #include "ref/texture_maps.h"
+#include "sim/cosim/frame_cycles.h"
 #include "sim/render/image.h"
 
 namespace phongsim {
@@ -63,6 +65,14 @@ struct RenderOptions {
   int repeats = 1;
 };
 
+// The clocks of one frame on a method's hardware unit, fed as the renderer feeds it
+// (docs/system.md).
+struct FrameReport {
+  FrameCycles cycles;  // RTL backend: measured, equal to the cycle model's; model: the model's
+  std::uint64_t pixels = 0;  // frame pixels the unit shaded (a unit output is one pixel, or a
+                             // pixel's one light (Lyon) or one colour channel (Kuijk-Blake))
+};
+
 struct MethodResult {
   std::string method;
   Backend backend = Backend::float_ref;  // the one actually used
@@ -71,6 +81,7 @@ struct MethodResult {
   std::vector<ImageMetrics> region_metrics;  // the same per RenderResult::regions
   double seconds = 0;      // wall-clock time of the shading pass (median over the repeats)
   double cpu_seconds = 0;  // the process's CPU time for it (median over the repeats)
+  std::optional<FrameReport> frame;  // methods on a unit (model and RTL backends)
 };
 
 struct RenderResult {

@@ -36,31 +36,47 @@ std::vector<std::int64_t> Unit::run(const std::vector<std::int64_t>& vectors,
   const std::size_t n_out = model_->outputs().size();
   const std::uint64_t count = vectors.size() / n_in;
   std::vector<std::int64_t> out;
-  if (backend_ == Backend::model) {
-    constexpr std::uint64_t kStep = 4096;
-    for (std::uint64_t i = 0; i < count; i += kStep) {
-      const std::uint64_t n = std::min(kStep, count - i);
-      (void)model_->eval_batch(std::span(vectors).subspan(i * n_in, n * n_in), out);
-      progress(what, i, count);
-    }
-    return out;
+  std::vector<std::uint32_t> counts;
+  constexpr std::uint64_t kStep = 4096;
+  for (std::uint64_t i = 0; i < count; i += kStep) {
+    const std::uint64_t n = std::min(kStep, count - i);
+    std::vector<std::uint32_t> step;
+    (void)model_->eval_batch(std::span(vectors).subspan(i * n_in, n * n_in), out, &step);
+    counts.insert(counts.end(), step.begin(), step.end());
+    if (backend_ == Backend::model) progress(what, i, count);
   }
+  frame_ = find_pipeline(cfg_.pipeline()).cycles(cfg_, vectors, out, counts);
+  if (backend_ == Backend::model) return out;
   auto dut = library_->create(*model_);
+  std::vector<std::int64_t> rtl;
   std::uint64_t outputs = 0;
   const HarnessResult r =
       stream_vectors(*dut, n_in, n_out, vectors, [&](std::span<const std::int64_t> o) {
-        out.insert(out.end(), o.begin(), o.end());
+        rtl.insert(rtl.end(), o.begin(), o.end());
         if (++outputs % 4096 == 0) progress(what, outputs, 0);
       });
   if (r.reason != StopReason::finished || r.inputs != count) {
     throw Error(fmt::format("{}: the RTL of {} stopped: {}", what, cfg_.origin(),
                             r.message.empty() ? "not every input was accepted" : r.message));
   }
-  return out;
+  const std::uint64_t measured = r.outputs == 0 ? 0 : r.last_output_cycle + 1;
+  if (measured != frame_.cycles || r.outputs != frame_.outputs) {
+    throw Error(fmt::format(
+        "{}: the RTL of {} took {} cycles for {} outputs, the cycle model says {} for {} (a "
+        "phongsim bug: please report it)",
+        what, cfg_.origin(), measured, r.outputs, frame_.cycles, frame_.outputs));
+  }
+  if (rtl != out) {  // the frame is a co-simulation too
+    std::size_t i = 0;
+    while (i < rtl.size() && i < out.size() && rtl[i] == out[i]) ++i;
+    throw Error(fmt::format("{}: the RTL of {} differs from its model at output {} of {}", what,
+                            cfg_.origin(), i / n_out, out.size() / n_out));
+  }
+  return rtl;
 }
 
-Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
-                 std::string_view what) {
+UnitImage pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                     std::string_view what) {
   const LyonFormats lf = LyonFormats::from_config(unit.config());
   const auto q = [](double x, fx::Format fmt) {
     return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
@@ -98,11 +114,11 @@ Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
     const Fragment& fr = f.fragments[i];
     img.at(fr.x, fr.y) = to_rgb8(combine(fr, f.lighting.lights, a));
   }
-  return img;
+  return {std::move(img), {unit.frame(), f.fragments.size()}};
 }
 
-Image vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgress& progress,
-                  std::string_view what) {
+UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgress& progress,
+                      std::string_view what) {
   const QuadFormats qf = QuadFormats::from_config(unit.config());
   if (qf.sub_bits != kSubBits) {
     throw Error(fmt::format("{}: the renderer projects with {} subpixel bits; {} has {}", what,
@@ -152,11 +168,12 @@ Image vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgress&
                    static_cast<double>(out[at + 4]) / full});
     }
   }
-  return img;
+  return {std::move(img), {unit.frame(), expected}};
 }
 
 // The channel values are scaled by the output's top value, like the quadratic unit's (vertex_unit).
-Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::string_view what) {
+UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                  std::string_view what) {
   const KbFormats kf = KbFormats::from_config(unit.config());
   const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
   const double top = fx::to_real(kf.out.max_raw(), kf.out);
@@ -222,7 +239,7 @@ Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress, std::s
     }
     at += 2 * 3 * length;
   }
-  return img;
+  return {std::move(img), {unit.frame(), expected / 3}};  // a span pixel per channel
 }
 
 }  // namespace phongsim::shading

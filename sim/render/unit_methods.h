@@ -33,33 +33,43 @@ class Unit {
   [[nodiscard]] const Config& config() const { return cfg_; }
   [[nodiscard]] const PipelineModel& model() const { return *model_; }
 
-  // Every output of `vectors` (flattened raw inputs), in order.
+  // Every output of `vectors` (flattened raw inputs), in order; their cycles go to frame().
+  // The RTL's measured cycles must be the cycle model's (Error otherwise: a phongsim bug).
   std::vector<std::int64_t> run(const std::vector<std::int64_t>& vectors,
                                 const RenderProgress& progress, std::string_view what);
+  // The cycles of the last run().
+  [[nodiscard]] const FrameCycles& frame() const { return frame_; }
 
  private:
   Config cfg_;
   std::unique_ptr<PipelineModel> model_;
   Backend backend_;
   std::shared_ptr<RtlLibrary> library_;
+  FrameCycles frame_;
+};
+
+// Each method's image and the frame's cycles on its unit.
+struct UnitImage {
+  Image image;
+  FrameReport frame;
 };
 
 // Per-pixel methods through a Lyon unit: one transaction per pixel and light, with
 // N0 = N1 = the interpolated normal (not normalized: the unit's g-normalization does that) and
 // a = 0; V and L unit vectors; shininess n (arrangement 8: m = round(sqrt(n))).
-[[nodiscard]] Image pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
-                               std::string_view what);
+[[nodiscard]] UnitImage pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                                   std::string_view what);
 
 // Vertex methods through the quadratic unit: one program per triangle with a visible pixel
 // (`linear`, Gouraud: the plane through the vertex colours; else the quadratic through the six
 // samples); the unit's pixels are kept where the triangle is the visible surface.
-[[nodiscard]] Image vertex_unit(bool linear, const Frame& f, Unit& unit,
-                                const RenderProgress& progress, std::string_view what);
+[[nodiscard]] UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit,
+                                    const RenderProgress& progress, std::string_view what);
 
 // The one-vector method (Kuijk–Blake eq. 4) through the Kuijk–Blake engine: per span and colour
 // channel one program whose terms are the ambient (a constant: angle 0, rate 0), and per light
 // the diffuse and the specular one-vector terms scaled by the light's and the material's colour.
-[[nodiscard]] Image kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
-                            std::string_view what);
+[[nodiscard]] UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                                std::string_view what);
 
 }  // namespace phongsim::shading

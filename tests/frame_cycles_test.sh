@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Issue 19: the frame's clocks that `render --backend rtl` measures on every unit method equal
+# what the cycle model gives on the model backend (the render itself refuses a disagreement, and
+# its RTL outputs must equal the model's; this checks the reported numbers end to end), and the
+# breakdown adds up. The teapot, every unit kind: quadratic walker, Lyon, Kuijk-Blake.
+#   tests/frame_cycles_test.sh BUILD_DIR
+set -euo pipefail
+phongsim="$1/phongsim"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/phongsim-frame.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+methods=gouraud,quadratic,lyon-k2,lyon-fig8-k1,kb-onevec
+for backend in rtl model; do
+  "$phongsim" render --scene teapot --method "$methods" --backend "$backend" --no-build \
+    --out "$tmp/$backend" --json "$tmp/$backend.json" >/dev/null
+done
+# A float method has no unit and no frame.
+"$phongsim" render --scene teapot --method phong,gouraud --backend float --out "$tmp/float" \
+  --json - | python3 -c 'import json, sys; assert all(m["frame"] is None for m in json.load(sys.stdin)["methods"])'
+
+python3 - "$tmp/rtl.json" "$tmp/model.json" <<'PY'
+import json, sys
+rtl, model = (json.load(open(f))["methods"] for f in sys.argv[1:3])
+for r, m in zip(rtl, model):
+    name = r["method"]
+    assert r["backend"] == "rtl" and m["backend"] == "model", name
+    f, g = r["frame"], m["frame"]
+    assert f == g, f"{name}: RTL {f} != cycle model {g}"
+    parts = ["outputs", "fill_cycles", "setup_cycles", "empty_row_cycles", "stall_cycles"]
+    assert f["cycles"] == sum(f[k] for k in parts), f"{name}: {f}"
+    assert f["cycles"] > f["pixels"] > 1000, f"{name}: {f}"
+    assert f["pixels_per_clock"] == f["pixels"] / f["cycles"], f"{name}: {f}"
+    if name in ("gouraud", "quadratic"):  # a row set-up cycle per row, some rows empty
+        assert f["setup_cycles"] > 0 and f["empty_row_cycles"] > 0, f"{name}: {f}"
+    if name == "kb-onevec":  # three channel spans per pixel, one output per clock
+        assert f["outputs"] == 3 * f["pixels"], f"{name}: {f}"
+    print(f"ok: {name}: {f['cycles']} cycles, {f['pixels']} pixels")
+PY
