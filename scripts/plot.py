@@ -10,6 +10,10 @@
   plot.py pareto --csv CSV --title T --x-label X --y-label Y --out PNG
       Error against area. CSV header "series,label,area,max_error,pareto", one row per point;
       pareto is 1 for the points on the Pareto front, which is drawn and whose points are labelled.
+  plot.py cost --csv CSV --title T --out PNG
+      Clocks per triangle against its pixels (render's <scene>_triangle_cycles.csv: header
+      "method,backend,triangle,pixels,cycles,setup_cycles,empty_row_cycles"), a series per method
+      and backend, with the line of one pixel per clock.
 
 Run with Debian's /usr/bin/python3 (package python3-matplotlib); phongsim runs it with the Python
 it was configured with (base/paths.h). The PNG (8-bit RGB) is written to --out as given (phongsim passes a
@@ -238,6 +242,40 @@ def figure_scanline(args, plt):
     return fig
 
 
+def figure_cost(args, plt):
+    want = ["method", "backend", "triangle", "pixels", "cycles", "setup_cycles",
+            "empty_row_cycles"]
+
+    def check_header(header):
+        if header != want:
+            raise PlotError(f"{args.csv}:1: expected the header '{','.join(want)}', got "
+                            f"'{','.join(header)}'")
+
+    rows = read_csv(args.csv, check_header)[1:]
+    series = {}
+    for n, r in enumerate(rows, start=2):
+        pixels, cycles = series.setdefault(f"{r[0]} [{r[1]}]", ([], []))
+        pixels.append(number(r[3], args.csv, n))
+        cycles.append(number(r[4], args.csv, n))
+    if not series:
+        raise PlotError(f"{args.csv}: no triangles")
+    fig, ax = plt.subplots(figsize=(9, 6), dpi=100)
+    top = 1.0
+    for k, (name, (pixels, cycles)) in enumerate(series.items()):
+        style = series_style(k)
+        ax.plot(pixels, cycles, linestyle="none", marker=style["marker"], color=style["color"],
+                markersize=4, alpha=0.6, label=name)
+        top = max(top, max(pixels), max(cycles))
+    ax.plot([0, top], [0, top], color="black", linewidth=1, label="one pixel per clock")
+    ax.set_xlabel("pixels of the triangle")
+    ax.set_ylabel("clocks on the unit (its rows set up, empty rows, pixels)")
+    ax.set_title(args.title, fontsize=13, fontweight="bold")
+    ax.grid(True, color="#dddddd", linewidth=0.6)
+    ax.legend(loc="upper left", fontsize=9, frameon=False)
+    fig.tight_layout()
+    return fig
+
+
 def figure_pareto(args, plt):
     header = ["series", "label", "area", "max_error", "pareto"]
     rows = read_csv(args.csv, header)
@@ -323,7 +361,8 @@ def plain_log_axis(axis, set_scale):
     axis.set_minor_formatter(Plain(labelOnlyBase=False, minor_thresholds=(3, 1)))
 
 
-FIGURES = {"grid": figure_grid, "scanline": figure_scanline, "pareto": figure_pareto}
+FIGURES = {"grid": figure_grid, "scanline": figure_scanline, "pareto": figure_pareto,
+           "cost": figure_cost}
 
 
 def save_rgb_png(fig, path):
@@ -354,7 +393,10 @@ def parse_args(argv):
     q.add_argument("--title", default="")
     q.add_argument("--x-label", default="area")
     q.add_argument("--y-label", default="error")
-    for parser in (g, s, q):
+    c = sub.add_parser("cost")
+    c.add_argument("--csv", required=True)
+    c.add_argument("--title", default="")
+    for parser in (g, s, q, c):
         parser.add_argument("--out", required=True)
     return p.parse_args(argv)
 

@@ -35,3 +35,21 @@ for r, m in zip(rtl, model):
         assert f["outputs"] == 3 * f["pixels"], f"{name}: {f}"
     print(f"ok: {name}: {f['cycles']} cycles, {f['pixels']} pixels")
 PY
+# Per triangle (the walker methods): every pixel once, each triangle at least its pixels plus a
+# clock per row, and with the fill at least the frame.
+python3 - "$tmp/model.json" "$tmp/model/teapot_triangle_cycles.csv" <<'PY'
+import csv, json, sys
+frames = {m["method"]: m["frame"] for m in json.load(open(sys.argv[1]))["methods"]}
+rows = list(csv.DictReader(open(sys.argv[2])))
+for method in ("gouraud", "quadratic"):
+    mine = [r for r in rows if r["method"] == method]
+    f = frames[method]
+    assert sum(int(r["pixels"]) for r in mine) == f["pixels"], method
+    for r in mine:
+        c, p = int(r["cycles"]), int(r["pixels"])
+        assert c == p + int(r["setup_cycles"]) + int(r["empty_row_cycles"]) and c > p, r
+    assert sum(int(r["cycles"]) for r in mine) + f["fill_cycles"] >= f["cycles"], method
+    print(f"ok: {method}: {len(mine)} triangles")
+assert {r["method"] for r in rows} == {"gouraud", "quadratic"}, "only walker methods"
+PY
+[ -s "$tmp/model/teapot_triangle_cycles.png" ] || { echo "FAIL: no triangle cycles plot"; exit 1; }

@@ -104,7 +104,8 @@ TEST_P(PipelineEntry, CycleModelCountsTheRtlsCycles) {
     std::vector<std::uint32_t> counts;
     model->reset();
     (void)model->eval_batch(in, out, &counts);
-    const FrameCycles c = it.pipeline->cycles(cfg, in, out, counts);
+    std::vector<FrameCycles> own;
+    const FrameCycles c = it.pipeline->cycles(cfg, in, out, counts, &own);
     auto dut = library->create(*model);
     const HarnessResult r = stream_vectors(*dut, n_in, n_out, in, [](auto) {});
     ASSERT_EQ(r.reason, StopReason::finished) << r.message;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 namespace phongsim {
 
@@ -18,8 +19,11 @@ struct FrameCycles {
   std::uint64_t stall_cycles = 0;      // outputs waiting for the sink (backpressure)
 };
 
-// The cycles of `n` vectors through a unit that takes one per clock with `latency`.
-[[nodiscard]] inline FrameCycles one_per_clock_cycles(int latency, std::uint64_t n) {
+// The cycles of `n` vectors through a unit that takes one per clock with `latency`; each
+// vector's own (PipelineInfo::cycles) is one cycle and one output.
+[[nodiscard]] inline FrameCycles one_per_clock_cycles(int latency, std::uint64_t n,
+                                                      std::vector<FrameCycles>* per_vector) {
+  if (per_vector != nullptr) per_vector->assign(n, FrameCycles{.cycles = 1, .outputs = 1});
   if (n == 0) return {};
   const auto fill = static_cast<std::uint64_t>(latency);
   return {.cycles = fill + n, .outputs = n, .fill_cycles = fill};

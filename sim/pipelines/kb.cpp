@@ -276,8 +276,10 @@ int latency(const Config&) { return 2; }  // header word to its first pixel (doc
 // cycle and the sink always ready: the word accepted in cycle 0 is the head from cycle 1; a pixel
 // leaves through the output register the cycle after it fires.
 FrameCycles cycles(const Config&, std::span<const std::int64_t> in, std::span<const std::int64_t>,
-                   std::span<const std::uint32_t> counts) {
+                   std::span<const std::uint32_t> counts, std::vector<FrameCycles>* per_vector) {
   const std::size_t words = counts.size(), fields = words == 0 ? 0 : in.size() / words;
+  if (per_vector != nullptr) per_vector->assign(words, {});
+  std::size_t span = 0;  // the header word of the span the cycle belongs to
   const auto field = [&](std::size_t w, std::size_t k) { return in[w * fields + k]; };
   FrameCycles now, at_last;  // at_last: as of the last pixel so far
   std::uint64_t last_fire = 0;
@@ -301,6 +303,12 @@ FrameCycles cycles(const Config&, std::span<const std::int64_t> in, std::span<co
     } else {
       ++now.setup_cycles;  // a header read or a left-over event word dropped
     }
+    if (per_vector != nullptr) {  // a dropped word's cycle is its own; the rest its span's
+      FrameCycles& own = (*per_vector)[fire ? span : head];
+      ++own.cycles;
+      ++(fire ? own.outputs : own.setup_cycles);
+    }
+    if (take) span = head;
     if (take) {
       running = true;
       remaining = field(head, 1);

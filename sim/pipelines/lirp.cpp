@@ -155,8 +155,8 @@ const PipelineInfo& lirp_pipeline() {
       .one_per_clock = true,
       .cycles =
           [](const Config& cfg, std::span<const std::int64_t>, std::span<const std::int64_t>,
-             std::span<const std::uint32_t> counts) {
-            return one_per_clock_cycles(latency(cfg), counts.size());
+             std::span<const std::uint32_t> counts, std::vector<FrameCycles>* per_vector) {
+            return one_per_clock_cycles(latency(cfg), counts.size(), per_vector);
           },
       .stages = stages,
       .native = native,

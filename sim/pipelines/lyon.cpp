@@ -442,8 +442,8 @@ const PipelineInfo& lyon_pipeline() {
       .one_per_clock = true,
       .cycles =
           [](const Config& cfg, std::span<const std::int64_t>, std::span<const std::int64_t>,
-             std::span<const std::uint32_t> counts) {
-            return one_per_clock_cycles(latency(cfg), counts.size());
+             std::span<const std::uint32_t> counts, std::vector<FrameCycles>* per_vector) {
+            return one_per_clock_cycles(latency(cfg), counts.size(), per_vector);
           },
       .stages = stages,
       .native = native,

@@ -194,14 +194,18 @@ int latency(const Config&) { return 4; }  // program to its first pixel (docs/qu
 // program without rows. Each row costs a Row cycle and one cycle per covered pixel (the model's
 // outputs say which); a pixel leaves through the output register the cycle after it fires.
 FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
-                   std::span<const std::int64_t> out, std::span<const std::uint32_t> counts) {
+                   std::span<const std::int64_t> out, std::span<const std::uint32_t> counts,
+                   std::vector<FrameCycles>* per_vector) {
   const std::size_t programs = counts.size(), fields = programs == 0 ? 0 : in.size() / programs;
+  if (per_vector != nullptr) per_vector->assign(programs, {});
   constexpr std::size_t kOutFields = 5;  // x, y, r, g, b
   FrameCycles now, at_last;              // at_last: as of the last pixel so far
   std::uint64_t t = 1, last_fire = 0;
   std::size_t pixel = 0;  // the next output
   bool loaded = false;    // the next program is loaded without an Idle cycle
   for (std::size_t k = 0; k < programs; ++k) {
+    const FrameCycles before = now;
+    const std::uint64_t start = t;
     if (!loaded) {
       ++now.setup_cycles;
       ++t;
@@ -220,6 +224,12 @@ FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
       pixel += w;
       last_fire = t - 1;
       at_last = now;
+    }
+    if (per_vector != nullptr) {
+      (*per_vector)[k] = {.cycles = t - start,
+                          .outputs = now.outputs - before.outputs,
+                          .setup_cycles = now.setup_cycles - before.setup_cycles,
+                          .empty_row_cycles = now.empty_row_cycles - before.empty_row_cycles};
     }
   }
   if (at_last.outputs == 0) return {};

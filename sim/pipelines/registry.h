@@ -79,8 +79,11 @@ struct PipelineInfo {
   // The cycle model: the stall-free FrameCycles of the stream `in` through phongsim's RTL from
   // reset, from the stream and the model's outputs for it (`out`; `counts`: each vector's
   // number of outputs) — what the RTL measures, exactly (tests/pipeline_test.cpp), without it.
+  // `per_vector` (may be null) gets each vector's own cycles, fill excluded (a span's header word
+  // carries the span's; a triangle program its rows, its pixels and the cycle that loads it).
   FrameCycles (*cycles)(const Config& cfg, std::span<const std::int64_t> in,
-                        std::span<const std::int64_t> out, std::span<const std::uint32_t> counts);
+                        std::span<const std::int64_t> out, std::span<const std::uint32_t> counts,
+                        std::vector<FrameCycles>* per_vector);
   // Every stage value of one input vector (evaluated like eval(): stateful models advance).
   std::vector<StageValue> (*stages)(PipelineModel& model, std::span<const std::int64_t> in);
 

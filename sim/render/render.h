@@ -71,6 +71,8 @@ struct FrameReport {
   FrameCycles cycles;  // RTL backend: measured, equal to the cycle model's; model: the model's
   std::uint64_t pixels = 0;  // frame pixels the unit shaded (a unit output is one pixel, or a
                              // pixel's one light (Lyon) or one colour channel (Kuijk-Blake))
+  // Methods with one program per triangle (the quadratic walker): each triangle's own cycles.
+  std::vector<std::pair<int, FrameCycles>> triangles;
 };
 
 struct MethodResult {
@@ -108,7 +110,9 @@ using RenderProgress = std::function<void(std::string_view, std::uint64_t, std::
 // <scene>_<method>.png per method, <scene>_<method>_diff.png (eq. 6.2, against the reference),
 // <scene>_scanline.csv (eq. 6.3 along the result's scanline, a column per curve), the figures
 // <scene>_grid.png (labelled rows) and <scene>_scanline.png drawn by scripts/plot.py
-// (sim/render/plot.h), <scene>_metrics.csv and .md. Returns their paths relative to the set.
+// (sim/render/plot.h), <scene>_metrics.csv and .md; when a method walked triangles on a unit,
+// <scene>_triangle_cycles.csv (each triangle's cycles against its pixels) and its plot .png.
+// Returns their paths relative to the set.
 std::vector<std::filesystem::path> write_render_outputs(const RenderResult& r, OutputSet& set);
 
 // The manifest set a scene's render files belong to ("render <scene>"): rendering a scene again

@@ -109,6 +109,27 @@ std::vector<fs::path> write_render_outputs(const RenderResult& r, OutputSet& set
                fmt::format("{}: illumination along row {} (eq. 6.3){}", r.scene, row, r.settings)},
               add("scanline.png"));
 
+  // Per triangle (scripts/plot.py cost): the walker's cycles against the pixels it covers.
+  std::string cost = "method,backend,triangle,pixels,cycles,setup_cycles,empty_row_cycles\n";
+  bool walked = false;
+  for (const MethodResult& m : r.results) {
+    if (!m.frame) continue;
+    for (const auto& [triangle, c] : m.frame->triangles) {
+      cost += fmt::format("{},{},{},{},{},{},{}\n", m.method, backend_name(m.backend), triangle,
+                          c.outputs, c.cycles, c.setup_cycles, c.empty_row_cycles);
+      walked = true;
+    }
+  }
+  if (walked) {
+    OutputFile& cost_csv = add("triangle_cycles.csv");
+    std::fputs(cost.c_str(), cost_csv.get());
+    std::fflush(cost_csv.get());
+    plot_figure("cost",
+                {"--csv", cost_csv.temp_path().string(), "--title",
+                 fmt::format("{}: clocks per triangle on the quadratic walker", r.scene)},
+                add("triangle_cycles.png"));
+  }
+
   OutputFile& csv = add("metrics.csv");
   std::string text =
       "method,backend,colour_correctness,psnr_db,max_error,pixels,seconds,cpu_seconds";

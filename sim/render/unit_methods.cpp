@@ -45,7 +45,7 @@ std::vector<std::int64_t> Unit::run(const std::vector<std::int64_t>& vectors,
     counts.insert(counts.end(), step.begin(), step.end());
     if (backend_ == Backend::model) progress(what, i, count);
   }
-  frame_ = find_pipeline(cfg_.pipeline()).cycles(cfg_, vectors, out, counts);
+  frame_ = find_pipeline(cfg_.pipeline()).cycles(cfg_, vectors, out, counts, &own_);
   if (backend_ == Backend::model) return out;
   auto dut = library_->create(*model_);
   std::vector<std::int64_t> rtl;
@@ -168,7 +168,11 @@ UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgr
                    static_cast<double>(out[at + 4]) / full});
     }
   }
-  return {std::move(img), {unit.frame(), expected}};
+  FrameReport frame{unit.frame(), expected, {}};
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    frame.triangles.emplace_back(tris[k], unit.vector_cycles()[k]);
+  }
+  return {std::move(img), std::move(frame)};
 }
 
 // The channel values are scaled by the output's top value, like the quadratic unit's (vertex_unit).

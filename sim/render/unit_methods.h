@@ -37,8 +37,9 @@ class Unit {
   // The RTL's measured cycles must be the cycle model's (Error otherwise: a phongsim bug).
   std::vector<std::int64_t> run(const std::vector<std::int64_t>& vectors,
                                 const RenderProgress& progress, std::string_view what);
-  // The cycles of the last run().
+  // The cycles of the last run(), and each of its vectors' own (PipelineInfo::cycles).
   [[nodiscard]] const FrameCycles& frame() const { return frame_; }
+  [[nodiscard]] const std::vector<FrameCycles>& vector_cycles() const { return own_; }
 
  private:
   Config cfg_;
@@ -46,6 +47,7 @@ class Unit {
   Backend backend_;
   std::shared_ptr<RtlLibrary> library_;
   FrameCycles frame_;
+  std::vector<FrameCycles> own_;
 };
 
 // Each method's image and the frame's cycles on its unit.
