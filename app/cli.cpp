@@ -202,6 +202,15 @@ CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimul
                       l.pipeline->default_vectors / 16};
 }
 
+std::optional<fs::path> inside(const fs::path& path, const fs::path& dir) {
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(fs::absolute(path), ec);
+  const fs::path d = fs::weakly_canonical(fs::absolute(dir), ec);
+  const fs::path rel = p.lexically_relative(d);
+  if (rel.empty() || *rel.begin() == ".." || rel == ".") return std::nullopt;
+  return rel;
+}
+
 bool progress_shown() { return isatty(STDERR_FILENO) != 0; }
 
 // Seconds a task runs before its progress line appears: PHONGSIM_PROGRESS_AFTER, else 2 (short

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -103,6 +104,11 @@ struct Rtl {
 // updates a second, with the elapsed time. (what, done, total); total 0: unknown.
 using Progress = std::function<void(std::string_view, std::uint64_t, std::uint64_t)>;
 [[nodiscard]] Progress progress_line(bool quiet = false);
+
+// Where `path` lies inside `dir`, relative to it (then a --json there is a file of a command's
+// output set), or nothing.
+[[nodiscard]] std::optional<std::filesystem::path> inside(const std::filesystem::path& path,
+                                                          const std::filesystem::path& dir);
 
 // Whether progress_line() shows anything (stderr is a terminal).
 [[nodiscard]] bool progress_shown();

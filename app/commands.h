@@ -20,5 +20,6 @@ void add_list(CLI::App& app, Action& action);
 void add_contract(CLI::App& app, Action& action);
 void add_render(CLI::App& app, Action& action);
 void add_sweep(CLI::App& app, Action& action);
+void add_study(CLI::App& app, Action& action);
 
 }  // namespace phongsim::cli

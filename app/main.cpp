@@ -106,6 +106,7 @@ int main(int argc, char** argv) {
   add_bench(app, action);
   add_sweep(app, action);
   add_render(app, action);
+  add_study(app, action);
   add_vectors(app, action);
   add_analyze(app, action);
   add_list(app, action);

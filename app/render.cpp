@@ -26,16 +26,6 @@ struct RenderCli {
   bool quiet = false;
 };
 
-// Whether `path` lies inside `dir` (then it is a file of the render's set).
-std::optional<fs::path> inside(const fs::path& path, const fs::path& dir) {
-  std::error_code ec;
-  const fs::path p = fs::weakly_canonical(fs::absolute(path), ec);
-  const fs::path d = fs::weakly_canonical(fs::absolute(dir), ec);
-  const fs::path rel = p.lexically_relative(d);
-  if (rel.empty() || *rel.begin() == ".." || rel == ".") return std::nullopt;
-  return rel;
-}
-
 nlohmann::ordered_json metrics_json(const ImageMetrics& m) {
   return {{"colour_correctness", m.colour_correctness},
           {"psnr_db", json_number(m.psnr)},

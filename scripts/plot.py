@@ -14,6 +14,9 @@
       Clocks per triangle against its pixels (render's <scene>_triangle_cycles.csv: header
       "method,backend,triangle,pixels,cycles,setup_cycles,empty_row_cycles"), a series per method
       and backend, with the line of one pixel per clock.
+  plot.py study --csv CSV --title T --out PNG
+      phongsim study's claims: a histogram per claim of its metric difference over the scenes
+      (study.csv: "scene,mesh,shininess,lights" then "<claim>_holds,<claim>_diff" per claim).
 
 Run with Debian's /usr/bin/python3 (package python3-matplotlib); phongsim runs it with the Python
 it was configured with (base/paths.h). The PNG (8-bit RGB) is written to --out as given (phongsim passes a
@@ -243,15 +246,8 @@ def figure_scanline(args, plt):
 
 
 def figure_cost(args, plt):
-    want = ["method", "backend", "triangle", "pixels", "cycles", "setup_cycles",
-            "empty_row_cycles"]
-
-    def check_header(header):
-        if header != want:
-            raise PlotError(f"{args.csv}:1: expected the header '{','.join(want)}', got "
-                            f"'{','.join(header)}'")
-
-    rows = read_csv(args.csv, check_header)[1:]
+    rows = read_csv(args.csv, ["method", "backend", "triangle", "pixels", "cycles",
+                               "setup_cycles", "empty_row_cycles"])[1:]
     series = {}
     for n, r in enumerate(rows, start=2):
         pixels, cycles = series.setdefault(f"{r[0]} [{r[1]}]", ([], []))
@@ -272,6 +268,34 @@ def figure_cost(args, plt):
     ax.set_title(args.title, fontsize=13, fontweight="bold")
     ax.grid(True, color="#dddddd", linewidth=0.6)
     ax.legend(loc="upper left", fontsize=9, frameon=False)
+    fig.tight_layout()
+    return fig
+
+
+def figure_study(args, plt):
+    rows = read_csv(args.csv, lambda header: None)
+    header, rows = rows[0], rows[1:]
+    claims = [h[:-len("_diff")] for h in header if h.endswith("_diff")]
+    if not claims or header[:4] != ["scene", "mesh", "shininess", "lights"]:
+        raise PlotError(f"{args.csv}:1: expected 'scene,mesh,shininess,lights,<claim>_holds,"
+                        f"<claim>_diff,...', got '{','.join(header)}'")
+    columns = 2
+    lines = (len(claims) + columns - 1) // columns
+    fig, axes = plt.subplots(lines, columns, figsize=(12, 2.6 * lines), dpi=100, squeeze=False)
+    for k, claim in enumerate(claims):
+        ax = axes[k // columns][k % columns]
+        col = header.index(claim + "_diff")
+        values = [number(r[col], args.csv, n) for n, r in enumerate(rows, start=2) if r[col]]
+        holds = sum(1 for v in values if v > 0)
+        if values:
+            ax.hist(values, bins=30, color="#4878a8")
+        ax.axvline(0, color="black", linewidth=1)
+        ax.set_title(f"{claim}: holds in {holds} of {len(values)}", fontsize=10)
+        ax.grid(True, color="#dddddd", linewidth=0.6)
+    for k in range(len(claims), lines * columns):
+        axes[k // columns][k % columns].axis("off")
+    fig.suptitle(args.title, fontsize=12, fontweight="bold")
+    fig.supxlabel("metric difference (colour correctness, eq. 6.1; > 0: the claim holds)")
     fig.tight_layout()
     return fig
 
@@ -362,7 +386,7 @@ def plain_log_axis(axis, set_scale):
 
 
 FIGURES = {"grid": figure_grid, "scanline": figure_scanline, "pareto": figure_pareto,
-           "cost": figure_cost}
+           "cost": figure_cost, "study": figure_study}
 
 
 def save_rgb_png(fig, path):
@@ -396,7 +420,10 @@ def parse_args(argv):
     c = sub.add_parser("cost")
     c.add_argument("--csv", required=True)
     c.add_argument("--title", default="")
-    for parser in (g, s, q, c):
+    t = sub.add_parser("study")
+    t.add_argument("--csv", required=True)
+    t.add_argument("--title", default="")
+    for parser in (g, s, q, c, t):
         parser.add_argument("--out", required=True)
     return p.parse_args(argv)
 

@@ -317,6 +317,10 @@ m = j["methods"][0]
 assert [r["region"] for r in m["regions"]] == j["regions"] == ["n=1", "n=4", "n=16", "n=64", "n=256"], j
 assert all(0 < r["colour_correctness"] <= 1 for r in m["regions"]), m
 assert len(j["files"]) == 7 and all(os.path.exists(f) for f in j["files"]), j
+j = doc("study", "--scenes", "3", "--size", "32", "--jobs", "2", "--out", os.path.join(tmp, "st"))
+assert j["scenes"] == 3 and len(j["files"]) == 6 and all(os.path.exists(f) for f in j["files"]), j
+for c in j["claims"]:
+    assert 0 <= c["holds"] <= c["scenes"] <= 3 and c["ci_low"] <= c["holds_fraction"] <= c["ci_high"], c
 j = doc("synth", "--config", default)
 assert j["generic"]["cells"] > 0 and j["ice40"] is None, j
 j = doc("sweep", "search", os.path.join(src, "sweeps/lirp-search.toml"), "--no-verify",
