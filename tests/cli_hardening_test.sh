@@ -323,6 +323,15 @@ for c in j["claims"]:
     assert 0 <= c["holds"] <= c["scenes"] <= 3 and c["ci_low"] <= c["holds_fraction"] <= c["ci_high"], c
 j = doc("synth", "--config", default)
 assert j["generic"]["cells"] > 0 and j["ice40"] is None, j
+# Logic depth: the deepest register or output leads the table, and is the design's depth.
+assert j["generic"]["depth"] > 0 and j["stages"][0]["levels"] == j["generic"]["depth"], j
+assert all(a["levels"] >= b["levels"] for a, b in zip(j["stages"], j["stages"][1:])), j
+assert {s["to"] for s in j["stages"] if s["output"]} >= {"out_p_o", "out_valid_o"}, j
+j1 = j
+j = doc("synth", "lirp", "--all")
+assert j["kind"] == "all" and [c["config"] for c in j["configs"]][:2] == ["colour8", "default"], j
+assert all(c["generic"]["depth"] > 0 for c in j["configs"]), j
+assert j["configs"][1]["stages"] == j1["stages"], (j["configs"][1], j1)
 j = doc("sweep", "search", os.path.join(src, "sweeps/lirp-search.toml"), "--no-verify",
         "--out", os.path.join(tmp, "found.toml"))
 assert j["formats"] == {"p": "S1.8", "a": "1.9"} and j["bits_saved"] == 3, j
@@ -350,6 +359,7 @@ assert len(rows) == 1, rows
 row = rows[0]
 assert row["pipeline"] == "lirp" and row["base"] == "lirp/default" and row["pareto"] == "1", row
 assert int(row["cells"]) > 0 and int(row["transistors"]) > 0, row
+assert int(row["depth"]) == j1["generic"]["depth"], (row, j1["generic"])
 assert all(row[k] == "" for k in ("lut4", "carry", "mac16", "ff", "ice40_fits", "fmax_mhz")), row
 assert "-1" not in open(os.path.join(tmp, "s", "sweep.csv")).read()
 missing = {(w, p) for w, paths in schema.items() for p in paths} - compared

@@ -389,7 +389,7 @@ import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 for r in rows:
     assert r["pipeline"] == "lirp" and r["base"] == "lirp/default", r
-    for k in ("cells", "transistors", "lut4", "carry", "mac16", "ff", "fmax_mhz"):
+    for k in ("cells", "transistors", "depth", "lut4", "carry", "mac16", "ff", "fmax_mhz"):
         assert float(r[k]) > 0, (k, r)
     assert r["ice40_fits"] == "1" and r["pareto"] in ("0", "1"), r
 assert sum(r["pareto"] == "1" for r in rows) == 3, rows

@@ -1,6 +1,7 @@
 // Tests for sim/synth.*: Yosys generic and iCE40 synthesis with nextpnr of LIRP configurations,
-// the content-keyed cache (in a temporary PHONGSIM_CACHE), and the errors for a missing tool and a
-// failing yosys run. Needs yosys and nextpnr-ice40 (label synth); about 15 s.
+// the content-keyed cache (in a temporary PHONGSIM_CACHE), the errors for a missing tool and a
+// failing yosys run, and the logic depth of a design whose depth is known without Yosys
+// (tests/synth_tb/depth_tree.sv). Needs yosys and nextpnr-ice40 (label synth); about 20 s.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -21,6 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using phongsim::Config;
+using phongsim::StageDepth;
 using phongsim::synthesize;
 using phongsim::SynthOptions;
 using phongsim::SynthResult;
@@ -108,6 +110,82 @@ TEST_F(SynthTest, LirpGenericAndIce40AreCachedByContent) {
   EXPECT_EQ(again.ff, r.ff);
   EXPECT_EQ(again.fits, r.fits);
   EXPECT_EQ(again.fmax_mhz, r.fmax_mhz);
+  EXPECT_GT(r.depth, 0);
+  EXPECT_EQ(again.depth, r.depth);
+  ASSERT_EQ(again.stages.size(), r.stages.size());
+  for (std::size_t i = 0; i < r.stages.size(); ++i) {
+    EXPECT_EQ(again.stages[i].to, r.stages[i].to);
+    EXPECT_EQ(again.stages[i].levels, r.stages[i].levels);
+    EXPECT_EQ(again.stages[i].from, r.stages[i].from);
+  }
+}
+
+const StageDepth* Find(const SynthResult& r, const std::string& to, bool output) {
+  for (const StageDepth& s : r.stages) {
+    if (s.to == to && s.output == output) return &s;
+  }
+  return nullptr;
+}
+
+TEST_F(SynthTest, DepthOfAKnownDesign) {
+  // Every level in tests/synth_tb/depth_tree.sv's header: a parity of 16 bits (4 levels, the
+  // least two-input gates allow), an AND of 8 (3), a register in an instance (1), outputs.
+  const fs::path tb = kSourceDir / "tests" / "synth_tb";
+  const phongsim::RtlDesign design{
+      "depth_tree", "depth_tree", {tb / "depth_tree_stage.sv", tb / "depth_tree.sv"}, {}, {}};
+  const SynthResult r =
+      synthesize(design, "depth_tree", SynthOptions{.generic = true, .ice40 = false}, stderr);
+  EXPECT_EQ(r.depth, 4);
+  struct Want {
+    std::string to;
+    bool output;
+    std::int64_t bits, levels;
+    std::string from;
+  };
+  const Want want[] = {
+      {"parity_q", false, 1, 4, "a_q"},
+      {"all_q", false, 1, 3, "a_q"},
+      {"u_stage.both_q", false, 1, 1, ""},
+      {"mixed_o", true, 1, 1, ""},
+      {"a_q", false, 16, 0, "a_i"},
+      {"parity_o", true, 1, 0, "parity_q"},
+      {"both_o", true, 1, 0, "u_stage.both_q"},
+  };
+  EXPECT_EQ(r.stages.size(), std::size(want));
+  for (const Want& w : want) {
+    const StageDepth* s = Find(r, w.to, w.output);
+    ASSERT_NE(s, nullptr) << w.to;
+    EXPECT_EQ(s->bits, w.bits) << w.to;
+    EXPECT_EQ(s->levels, w.levels) << w.to;
+    if (!w.from.empty()) {
+      EXPECT_EQ(s->from, w.from) << w.to;
+    }
+  }
+  // A path into both_q starts at parity_q or all_q; into mixed_o at parity_q or a_i.
+  const StageDepth* both = Find(r, "u_stage.both_q", false);
+  ASSERT_NE(both, nullptr);
+  EXPECT_TRUE(both->from == "parity_q" || both->from == "all_q") << both->from;
+  const StageDepth* mixed = Find(r, "mixed_o", true);
+  ASSERT_NE(mixed, nullptr);
+  EXPECT_TRUE(mixed->from == "parity_q" || mixed->from == "a_i") << mixed->from;
+  // Deepest first.
+  for (std::size_t i = 1; i < r.stages.size(); ++i) {
+    EXPECT_GE(r.stages[i - 1].levels, r.stages[i].levels);
+  }
+}
+
+TEST(LogicDepth, CombinationalLoopIsAnError) {
+  // Two inverters driving each other (a netlist in write_json's shape).
+  const std::string netlist = R"({"modules": {"loop": {
+    "ports": {"y_o": {"direction": "output", "bits": [2]}},
+    "cells": {
+      "a": {"type": "$_NOT_", "port_directions": {"A": "input", "Y": "output"},
+            "connections": {"A": [2], "Y": [3]}},
+      "b": {"type": "$_NOT_", "port_directions": {"A": "input", "Y": "output"},
+            "connections": {"A": [3], "Y": [2]}}},
+    "netnames": {"y_o": {"hide_name": 0, "bits": [2]}}}}})";
+  const std::string message = ErrorOf([&] { (void)phongsim::logic_depth(netlist, "loop"); });
+  EXPECT_NE(message.find("combinational loop"), std::string::npos) << message;
 }
 
 TEST_F(SynthTest, NarrowerFormatsGiveFewerCells) {

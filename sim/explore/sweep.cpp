@@ -314,6 +314,7 @@ nlohmann::json to_json(const PointResult& r) {
       // What was not computed (generic or iCE40 synthesis) is null.
       {"synth", r.synthesized ? nlohmann::json{{"cells", count(r.synth.cells)},
                                                {"transistors", count(r.synth.transistors)},
+                                               {"depth", count(r.synth.depth)},
                                                {"lut4", count(r.synth.lut4)},
                                                {"carry", count(r.synth.carry)},
                                                {"mac16", count(r.synth.mac16)},
@@ -351,6 +352,7 @@ PointResult from_json(const nlohmann::json& j) {
     r.synthesized = true;
     r.synth.cells = count("cells");
     r.synth.transistors = count("transistors");
+    r.synth.depth = s.contains("depth") ? count("depth") : -1;
     r.synth.lut4 = count("lut4");
     r.synth.carry = count("carry");
     r.synth.mac16 = count("mac16");
@@ -494,7 +496,7 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
   for (const auto& a : spec.axes) csv += "," + a.key;
   csv += ",max_error_lsb,mean_error_lsb,max_error_abs";
   for (const auto& sc : spec.scenes) csv += fmt::format(",cc_{0},psnr_{0}", sc.scene);
-  csv += ",cells,transistors,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency,pareto\n";
+  csv += ",cells,transistors,depth,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency,pareto\n";
   for (std::size_t k = 0; k < results.size(); ++k) {
     const PointResult& r = results[k];
     const Config cfg = Config::load(out / point_file(r.index));
@@ -508,8 +510,9 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     }
     const bool generic = r.synthesized && spec.synth.generic;
     const bool ice40 = r.synthesized && spec.synth.ice40 && r.synth.lut4 >= 0;
-    csv += fmt::format(",{},{}", generic ? count(r.synth.cells) : "",
-                       generic ? count(r.synth.transistors) : "");
+    csv +=
+        fmt::format(",{},{},{}", generic ? count(r.synth.cells) : "",
+                    generic ? count(r.synth.transistors) : "", generic ? count(r.synth.depth) : "");
     csv += fmt::format(",{},{},{},{},{},{}", ice40 ? count(r.synth.lut4) : "",
                        ice40 ? count(r.synth.carry) : "", ice40 ? count(r.synth.mac16) : "",
                        ice40 ? count(r.synth.ff) : "", ice40 ? (r.synth.fits ? "1" : "0") : "",
@@ -535,8 +538,8 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     rule += "---|";
   }
   if (spec.synth.generic) {
-    md += " cells | transistors |";
-    rule += "---|---|";
+    md += " cells | transistors | depth |";
+    rule += "---|---|---|";
   }
   if (spec.synth.ice40) {
     md += " LUT4 | carry | MAC16 | fmax (MHz) |";
@@ -555,7 +558,9 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     for (const auto& v : r.values) md += fmt::format(" {} |", unquote(v.second));
     md += fmt::format(" {:.4g} | {:.4g} |", r.error.max_lsb, r.error.mean_lsb);
     for (const auto& c : r.colour_correctness) md += fmt::format(" {:.4f} |", c.second);
-    if (spec.synth.generic) md += fmt::format(" {} | {} |", r.synth.cells, r.synth.transistors);
+    if (spec.synth.generic) {
+      md += fmt::format(" {} | {} | {} |", r.synth.cells, r.synth.transistors, r.synth.depth);
+    }
     if (spec.synth.ice40) {
       md += fmt::format(" {} | {} | {} | {} |", r.synth.lut4, r.synth.carry, r.synth.mac16,
                         r.synth.fits ? fmt::format("{:.1f}", r.synth.fmax_mhz) : "does not fit");

@@ -12,10 +12,14 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
+#include <span>
 #include <sstream>
+#include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "base/error.h"
@@ -34,7 +38,7 @@ namespace {
 
 // Part of every cache key: bump when the flow changes in a way the hashed scripts do not show
 // (the wrapper, what is counted, how results are parsed).
-constexpr const char* kFlowVersion = "phongsim synth flow 1";
+constexpr const char* kFlowVersion = "phongsim synth flow 2";  // 2: logic depth
 constexpr const char* kWrapTop = "phongsim_synth_wrap";
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -109,7 +113,7 @@ std::string read_script(const RtlDesign& src, const std::string& chparam,
 std::string generic_script(const std::string& top, const std::string& dir) {
   return fmt::format(
       "synth -flatten -top {0}; check -assert; select -assert-none t:$*dlatch* t:$_DLATCH*; "
-      "tee -q -o {1}/generic.json stat -json; dffunmap; "
+      "tee -q -o {1}/generic.json stat -json; write_json {1}/netlist.json; dffunmap; "
       "tee -q -o {1}/cmos.json stat -json -tech cmos",
       top, dir);
 }
@@ -184,9 +188,12 @@ void run_generic(const RtlDesign& src, const std::string& chparam, const fs::pat
   } catch (const std::exception& e) {  // JSON shape, number syntax
     throw Error(fmt::format("unexpected yosys statistics for {}: {}", label, e.what()));
   }
+  r.stages = logic_depth(read_file(dir / "netlist.json"), src.top);
+  r.depth = r.stages.empty() ? 0 : r.stages.front().levels;
   log_line(log,
-           fmt::format("yosys generic synthesis of {} ({}): {} cells, ~{} transistors", label,
-                       src.top, r.cells, r.transistors),
+           fmt::format("yosys generic synthesis of {} ({}): {} cells, ~{} transistors, depth {} "
+                       "levels",
+                       label, src.top, r.cells, r.transistors, r.depth),
            t0);
 }
 
@@ -341,9 +348,18 @@ void run_ice40(const RtlDesign& src, const std::string& chparam, const fs::path&
 }
 
 nlohmann::json to_json(const SynthResult& r) {
-  return {{"key", r.key},   {"cells", r.cells}, {"transistors", r.transistors},
-          {"lut4", r.lut4}, {"carry", r.carry}, {"mac16", r.mac16},
-          {"ff", r.ff},     {"fits", r.fits},   {"fmax_mhz", r.fmax_mhz}};
+  nlohmann::json stages = nlohmann::json::array();
+  for (const StageDepth& s : r.stages) {
+    stages.push_back({{"to", s.to},
+                      {"output", s.output},
+                      {"bits", s.bits},
+                      {"levels", s.levels},
+                      {"from", s.from}});
+  }
+  return {{"key", r.key},     {"cells", r.cells},      {"transistors", r.transistors},
+          {"depth", r.depth}, {"stages", stages},      {"lut4", r.lut4},
+          {"carry", r.carry}, {"mac16", r.mac16},      {"ff", r.ff},
+          {"fits", r.fits},   {"fmax_mhz", r.fmax_mhz}};
 }
 
 std::optional<SynthResult> read_cached(const fs::path& path, const std::string& key) {
@@ -356,6 +372,12 @@ std::optional<SynthResult> read_cached(const fs::path& path, const std::string& 
     r.key = key;
     r.cells = j.at("cells").get<std::int64_t>();
     r.transistors = j.at("transistors").get<std::int64_t>();
+    r.depth = j.at("depth").get<std::int64_t>();
+    for (const auto& s : j.at("stages")) {
+      r.stages.push_back({s.at("to").get<std::string>(), s.at("output").get<bool>(),
+                          s.at("bits").get<std::int64_t>(), s.at("levels").get<std::int64_t>(),
+                          s.at("from").get<std::string>()});
+    }
     r.lut4 = j.at("lut4").get<std::int64_t>();
     r.carry = j.at("carry").get<std::int64_t>();
     r.mac16 = j.at("mac16").get<std::int64_t>();
@@ -393,7 +415,191 @@ void write_cached(const fs::path& path, const nlohmann::json& j, std::FILE* log)
   }
 }
 
+// Logic depth ----------------------------------------------------------------------------------
+
+// "valid_q", "vl_q5": a register's name in the RTL (STYLE.md: registers end _q, copies _q2, ...).
+bool register_name(std::string_view name) {
+  const auto dot = name.rfind('.');
+  std::string_view last = dot == std::string_view::npos ? name : name.substr(dot + 1);
+  while (!last.empty() && last.back() >= '0' && last.back() <= '9') last.remove_suffix(1);
+  return last.ends_with("_q");
+}
+
+// Whether `a` names a flip-flop's output better than `b`: a register name first, then the
+// innermost (most dots: where the register is declared, not a wire it is assigned to), then the
+// shorter, then the first in order.
+bool better_name(const std::string& a, const std::string& b) {
+  const auto key = [](const std::string& n) {
+    return std::tuple(register_name(n), std::count(n.begin(), n.end(), '.'),
+                      -static_cast<std::ptrdiff_t>(n.size()));
+  };
+  const auto ka = key(a);
+  const auto kb = key(b);
+  return ka != kb ? ka > kb : a < b;
+}
+
 }  // namespace
+
+std::vector<StageDepth> logic_depth(const std::string& netlist_json, const std::string& top) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(netlist_json);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("cannot read the yosys netlist of {}: {}", top, e.what()));
+  }
+  try {
+    const auto& mod = j.at("modules").at(top);
+    // Bits are numbers; "0", "1", "x", "z" are constants (-1 here).
+    const auto bit_of = [](const nlohmann::json& b) {
+      return b.is_number_integer() ? b.get<std::int64_t>() : std::int64_t{-1};
+    };
+    struct Cell {
+      bool sequential = false;
+      std::vector<std::int64_t> in, out;
+    };
+    std::vector<Cell> cells;
+    std::int64_t max_bit = 0;
+    for (const auto& [name, c] : mod.at("cells").items()) {
+      Cell cell;
+      const auto& dirs = c.at("port_directions");
+      // A flip-flop (Yosys's $_DFF*, $_SDFF*, $_ALDFF*, ... cells) has an output Q; its clock C
+      // starts no path.
+      cell.sequential = dirs.contains("Q") && dirs.at("Q") == "output";
+      for (const auto& [port, bits] : c.at("connections").items()) {
+        const std::string dir = dirs.at(port).get<std::string>();
+        if (cell.sequential && port == "C") continue;
+        for (const auto& b : bits) {
+          const std::int64_t bit = bit_of(b);
+          if (bit < 0) continue;
+          max_bit = std::max(max_bit, bit);
+          (dir == "output" ? cell.out : cell.in).push_back(bit);
+        }
+      }
+      cells.push_back(std::move(cell));
+    }
+    std::vector<std::pair<std::string, std::vector<std::int64_t>>> inputs, outputs;
+    for (const auto& [name, p] : mod.at("ports").items()) {
+      std::vector<std::int64_t> bits;
+      for (const auto& b : p.at("bits")) {
+        bits.push_back(bit_of(b));
+        max_bit = std::max(max_bit, bits.back());
+      }
+      (p.at("direction") == "output" ? outputs : inputs).emplace_back(name, std::move(bits));
+    }
+    const auto n = static_cast<std::size_t>(max_bit + 1);
+
+    // Levels in topological order (Kahn): a gate's output is one more than its deepest input; a
+    // bit no gate drives (an input port, a flip-flop's output) is level 0 and starts its paths.
+    constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+    std::vector<std::size_t> driver(n, kNone);
+    std::vector<bool> reg_out(n, false);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      for (const auto bit : cells[c].out) {
+        if (cells[c].sequential) {
+          reg_out[bit] = true;
+        } else {
+          driver[bit] = c;
+        }
+      }
+    }
+    std::vector<std::int64_t> level(n, 0);
+    std::vector<std::int64_t> start(n);
+    for (std::size_t b = 0; b < n; ++b) start[b] = static_cast<std::int64_t>(b);
+    std::vector<std::vector<std::size_t>> readers(n);
+    std::vector<std::size_t> pending(cells.size(), 0);
+    std::vector<std::size_t> ready;
+    std::size_t gates = 0;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (cells[c].sequential) continue;
+      ++gates;
+      for (const auto bit : cells[c].in) {
+        if (driver[bit] == kNone) continue;
+        readers[bit].push_back(c);
+        ++pending[c];
+      }
+      if (pending[c] == 0) ready.push_back(c);
+    }
+    std::size_t done = 0;
+    while (!ready.empty()) {
+      const std::size_t c = ready.back();
+      ready.pop_back();
+      ++done;
+      std::int64_t deepest = 0;
+      std::int64_t from = -1;
+      for (const auto bit : cells[c].in) {
+        if (from < 0 || level[bit] > deepest) {
+          deepest = level[bit];
+          from = start[bit];
+        }
+      }
+      for (const auto bit : cells[c].out) {
+        level[bit] = deepest + 1;
+        start[bit] = from;
+        for (const std::size_t r : readers[bit]) {
+          if (--pending[r] == 0) ready.push_back(r);
+        }
+      }
+    }
+    if (done != gates) {
+      throw Error(fmt::format("the netlist of {} has a combinational loop", top));
+    }
+
+    // Names: an input port's bits by the port, a flip-flop's output by its best public wire.
+    std::vector<const std::string*> name(n, nullptr);
+    std::vector<std::string> netnames;
+    for (const auto& [net, v] : mod.at("netnames").items()) {
+      if (v.value("hide_name", 0) != 0) continue;
+      netnames.push_back(net);
+    }
+    for (const auto& net : netnames) {
+      for (const auto& b : mod.at("netnames").at(net).at("bits")) {
+        const std::int64_t bit = bit_of(b);
+        if (bit < 0 || bit > max_bit || !reg_out[bit]) continue;  // a wire no cell or port uses
+        if (name[bit] == nullptr || better_name(net, *name[bit])) name[bit] = &net;
+      }
+    }
+    for (const auto& [port, bits] : inputs) {
+      for (const auto bit : bits) {
+        if (bit >= 0) name[bit] = &port;
+      }
+    }
+    static const std::string unnamed = "(unnamed register)";
+    const auto name_of = [&](std::int64_t bit) -> std::string {
+      if (bit < 0) return "";
+      return name[bit] != nullptr ? *name[bit] : reg_out[bit] ? unnamed : "";
+    };
+
+    std::map<std::pair<bool, std::string>, StageDepth> stages;
+    const auto add = [&](const std::string& to, bool output, std::span<const std::int64_t> bits,
+                         std::int64_t count) {
+      StageDepth& s = stages[{output, to}];
+      s.to = to;
+      s.output = output;
+      s.bits += count;
+      for (const auto bit : bits) {
+        if (bit < 0) continue;  // a constant
+        if (level[bit] > s.levels || (s.from.empty() && level[bit] == s.levels)) {
+          s.levels = level[bit];
+          s.from = name_of(start[bit]);
+        }
+      }
+    };
+    for (const Cell& c : cells) {
+      if (!c.sequential || c.out.empty()) continue;
+      add(name_of(c.out.front()), false, c.in, 1);
+    }
+    for (const auto& [port, bits] : outputs) {
+      add(port, true, bits, static_cast<std::int64_t>(bits.size()));
+    }
+    std::vector<StageDepth> out;
+    for (auto& [k, s] : stages) out.push_back(std::move(s));
+    std::stable_sort(out.begin(), out.end(),
+                     [](const StageDepth& a, const StageDepth& b) { return a.levels > b.levels; });
+    return out;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("unexpected yosys netlist of {}: {}", top, e.what()));
+  }
+}
 
 SynthResult synthesize(const RtlDesign& src, const std::string& label, const SynthOptions& options,
                        std::FILE* log) {
