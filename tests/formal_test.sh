@@ -9,7 +9,8 @@ depth=${2:-24}
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/phongsim-formal.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 yosys -q -l "$tmp/yosys.log" -p "
-  read_verilog -sv -formal $src/rtl/common/stream_skid.sv $src/rtl/common/pipe_ctrl.sv \
+  read_verilog -sv -formal $src/rtl/common/stream_check.sv $src/rtl/common/stream_skid.sv \
+    $src/rtl/common/pipe_ctrl.sv \
     $src/rtl/common/pipe_delay.sv $src/tests/formal/stream_props.sv
   prep -top $top
   async2sync

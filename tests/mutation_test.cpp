@@ -97,6 +97,10 @@ TEST_P(MutationTest, IsCaughtAndReproduces) {
   const std::string failure = FirstFailure(r.out);
   ASSERT_FALSE(failure.empty()) << r.out;
   EXPECT_NE(r.out.find("waveform of cycles"), std::string::npos) << r.out;
+  if (!m.report.empty()) {  // seen by an RTL assertion, not by comparing outputs
+    EXPECT_TRUE(failure.starts_with("HANDSHAKE VIOLATION")) << r.out;
+    EXPECT_NE(r.out.find(m.report), std::string::npos) << r.out;
+  }
   ASSERT_TRUE(fs::exists(trace) && fs::file_size(trace) > 0);
 
   // The printed reproduce command, run as printed (through a shell, as a user pastes it).

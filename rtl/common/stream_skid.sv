@@ -81,4 +81,20 @@ module stream_skid #(
     spare_q <= spare_d;
   end
 
+  // Assertions (simulation only): both sides keep the valid/ready rules (stream_check).
+  stream_check #(.Width(Width)) u_check_in (
+    .clk_i,
+    .rst_ni,
+    .valid_i(in_valid_i),
+    .ready_i(in_ready_o),
+    .data_i (in_data_i)
+  );
+  stream_check #(.Width(Width)) u_check_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i(out_valid_o),
+    .ready_i(out_ready_i),
+    .data_i (out_data_o)
+  );
+
 endmodule

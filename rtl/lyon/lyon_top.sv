@@ -367,6 +367,16 @@ module lyon_top #(
     .out_data_o ({out_spec_o, out_diff_o})
   );
 
+  // Assertions (simulation only): the valid/ready rules of the input (stream_check); the output
+  // skid buffer checks the pipeline's stream and the output.
+  stream_check #(.Width(12 * VecW + AW + ShinW)) u_check_in (
+    .clk_i,
+    .rst_ni,
+    .valid_i(in_valid_i),
+    .ready_i(in_ready_o),
+    .data_i ({in_shin_i, in_l_i, in_v_i, in_a_i, in_n1_i, in_n0_i})
+  );
+
   // Assertions: elaboration-time parameter checks.
 `ifndef __ICARUS__  // Icarus 11 has no elaboration-time $error
   if (Arrangement != 7 && Arrangement != 8) begin : g_bad_arrangement

@@ -41,6 +41,8 @@ struct Mutant {
   std::string_view from;
   std::string_view to;
   std::string_view breaks;  // what it breaks, one line
+  // When set: text the failure report must contain (a mutant only an assertion can see).
+  std::string_view report = {};
 };
 
 // One stage's value for one input, named as in the RTL and the pipeline's spec.
