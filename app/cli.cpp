@@ -199,7 +199,7 @@ CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimul
                       l.pipeline->independent_vectors, std::move(rtl.make_dut),
                       std::move(rtl.label), std::move(rtl.options),
                       // The default run (about a million outputs) makes 16 shards.
-                      l.pipeline->default_vectors / 16};
+                      l.pipeline->default_vectors / 16, l.pipeline->contract(*l.model, l.cfg)};
 }
 
 std::optional<fs::path> inside(const fs::path& path, const fs::path& dir) {

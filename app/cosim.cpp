@@ -75,6 +75,12 @@ nlohmann::ordered_json to_json(const CosimReport& r, double seconds) {
       {"vectors", r.vectors},
       {"directed_vectors", r.directed},
       {"random_vectors", r.random},
+      {"in_contract",
+       r.contract ? nlohmann::ordered_json(r.contract->in) : nlohmann::ordered_json(nullptr)},
+      {"out_of_contract",
+       r.contract ? nlohmann::ordered_json(r.contract->out()) : nlohmann::ordered_json(nullptr)},
+      {"contract_clauses", r.contract ? contract_json(r.contract_clauses, *r.contract)
+                                      : nlohmann::ordered_json(nullptr)},
       {"outputs", r.outputs},
       {"mismatches", r.mismatches},
       {"cycles", r.cycles},

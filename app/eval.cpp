@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/json.h"
 #include "base/error.h"
 #include "base/output_file.h"
 #include "sim/cosim/eval.h"
@@ -14,11 +15,13 @@ struct EvalCli {
   std::string backend = "model";
   std::string in;
   std::string out;
+  std::string json;
   bool real = false;
 };
 
 int run_eval(const EvalCli& c) {
-  check_distinct({{"--in", c.in}, {"--out", c.out}, {"--config", c.target.config}});
+  check_distinct(
+      {{"--in", c.in}, {"--out", c.out}, {"--json", c.json}, {"--config", c.target.config}});
   const Loaded l = load(c.target);
   DutFactory make_dut;
   if (c.backend == "rtl") {
@@ -27,11 +30,29 @@ int run_eval(const EvalCli& c) {
              c.target.simulator != "verilator") {
     throw Error("--rtl, --rtl-plugin and --simulator need --backend rtl");
   }
+  JsonOutput json(c.json);
   OutputFile out(c.out);
-  const std::size_t rows = eval_csv(*l.model, make_dut, c.in, out.get(), c.real);
+  const InputContract contract = l.pipeline->contract(*l.model, l.cfg);
+  const EvalResult r = eval_csv(*l.model, make_dut, c.in, out.get(), c.real, contract);
   out.commit();
-  fmt::print(out.is_stdout() ? stderr : stdout, "{} output rows from {} ({} backend, {}) -> {}\n",
-             rows, c.in, c.backend, l.cfg.origin(), c.out);
+  fmt::print(out.is_stdout() || json.to_stdout() ? stderr : stdout,
+             "{} output rows from {} ({} backend, {}) -> {}; {} vectors: {}\n", r.rows, c.in,
+             c.backend, l.cfg.origin(), c.out, r.vectors, contract.summary(r.contract));
+  if (json.wanted()) {
+    nlohmann::ordered_json j = json_document("eval");
+    j["pipeline"] = l.pipeline->name;
+    j["config"] = l.cfg.name();
+    j["config_path"] = l.cfg.origin();
+    j["backend"] = c.backend;
+    j["in"] = c.in;
+    j["out"] = c.out;
+    j["vectors"] = r.vectors;
+    j["outputs"] = r.rows;
+    j["in_contract"] = r.contract.in;
+    j["out_of_contract"] = r.contract.out();
+    j["contract_clauses"] = contract_json(contract.clauses(), r.contract);
+    json.write(j);
+  }
   return 0;
 }
 
@@ -89,6 +110,9 @@ void add_eval(CLI::App& app, Action& action) {
                   "output CSV: header of output field names (- is standard output)")
       ->required();
   cmd->add_flag("--real", c->real, "values are reals instead of raw integers");
+  cmd->add_option("--json", c->json,
+                  "write the counts as JSON (docs/json.md: vectors, outputs, inside and outside "
+                  "the input contract); - is standard output");
   cmd->callback([c, &action]() { action = [c]() { return run_eval(*c); }; });
 }
 

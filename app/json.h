@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "base/output_file.h"
+#include "sim/cosim/contract.h"
 
 namespace phongsim::cli {
 
@@ -23,6 +24,11 @@ inline constexpr std::string_view kJsonSchema = "phongsim/1";
 [[nodiscard]] inline nlohmann::ordered_json json_number(double x) {
   return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
 }
+
+// Per input contract clause, in order: {"clause": name, "out_of_contract": vectors that broke it
+// first} (docs/json.md).
+[[nodiscard]] nlohmann::ordered_json contract_json(const std::vector<std::string>& clauses,
+                                                   const ContractCounts& counts);
 
 // A --json output opened up front (an unwritable path fails before the work); `-` is standard
 // output. Empty path: none.

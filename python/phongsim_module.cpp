@@ -186,7 +186,8 @@ PYBIND11_MODULE(phongsim, m) {
         o.sink = phongsim::StallPattern::parse(backpressure);
         const phongsim::CosimReport r =
             phongsim::cosim({std::string(g.pipeline().name), g.config(), g.model(), stimulus,
-                             g.pipeline().independent_vectors, make_dut, label, ""},
+                             g.pipeline().independent_vectors, make_dut, label, "",
+                             /*shard_vectors=*/0, g.pipeline().contract(g.model(), g.config())},
                             o);
         py::dict d;
         d["passed"] = r.passed;
@@ -196,6 +197,8 @@ PYBIND11_MODULE(phongsim, m) {
         d["rtl"] = r.rtl_label;
         d["vectors"] = r.vectors;
         d["outputs"] = r.outputs;
+        d["in_contract"] = r.contract ? r.contract->in : r.vectors;
+        d["out_of_contract"] = r.contract ? r.contract->out() : 0;
         d["mismatches"] = r.mismatches;
         d["cycles"] = r.cycles;
         d["throughput"] = r.throughput;

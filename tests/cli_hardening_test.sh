@@ -337,6 +337,15 @@ j = doc("sweep", "search", os.path.join(src, "sweeps/lirp-search.toml"), "--no-v
 assert j["formats"] == {"p": "S1.8", "a": "1.9"} and j["bits_saved"] == 3, j
 j = doc("cosim", "--config", default, "--vectors", "100", "--backpressure", "none,random:0.5")
 assert len(j["runs"]) == 2 and j["runs"][1]["throughput"] == 1.0, j
+for run in j["runs"]:  # every accepted vector counted once against the input contract
+    assert run["in_contract"] + run["out_of_contract"] == run["vectors"], run
+    assert sum(c["out_of_contract"] for c in run["contract_clauses"]) == run["out_of_contract"], run
+vectors = os.path.join(tmp, "vectors.csv")
+subprocess.run([phongsim, "vectors", "--config", default, "--vectors", "50", "--out", vectors],
+               check=True, capture_output=True)
+j = doc("eval", "--config", default, "--in", vectors, "--out", os.path.join(tmp, "eval.csv"))
+assert j["vectors"] == j["outputs"] == j["in_contract"] + j["out_of_contract"] > 50, j
+assert [c["clause"] for c in j["contract_clauses"]][0] == "a in [0, 1]", j
 # A failing run (a deadlock: the sink stalls longer than the timeout) carries its failure as
 # fields; throughput and latency were never measured, so they are null, not 0.
 r = subprocess.run([phongsim, "cosim", "--config", default, "--vectors", "100", "--backpressure",

@@ -282,13 +282,23 @@ class Cosim : public ::testing::Test {
   }
 
   // shard_vectors > 0: the main run split into shards of about that many vectors (cosim.h).
+  // contract: counted against LIRP's input contract (none: nothing counted).
   CosimReport Run(const FaultSpec& fault, const CosimOptions& o, Probe* probe = nullptr,
-                  std::uint64_t shard_vectors = 0) {
+                  std::uint64_t shard_vectors = 0, bool contract = false) {
     const phongsim::DutFactory factory = [&] {
       return DutPtr(new FakeDut(formats_, kLatency, fault, probe), DutDeleter{});
     };
-    const phongsim::CosimSubject subject{"lirp",  cfg_, *model_, stimulus_,    true,
-                                         factory, "",   "",      shard_vectors};
+    const phongsim::CosimSubject subject{
+        "lirp",
+        cfg_,
+        *model_,
+        stimulus_,
+        true,
+        factory,
+        "",
+        "",
+        shard_vectors,
+        contract ? lirp_.contract(*model_, cfg_) : phongsim::InputContract()};
     return phongsim::cosim(subject, o);
   }
 

@@ -270,4 +270,46 @@ TEST_F(Cosim, JobsDoNotChangeTheResult) {
   }
 }
 
+// ---- input contract ----
+
+// Every accepted vector is counted once against the input contract, inside or outside, split or
+// not, however many workers; the counts are the contract's own on the same vectors; a failing
+// run counts the vectors the RTL accepted.
+TEST_F(Cosim, ContractCountsEveryAcceptedVector) {
+  CosimOptions o = Options("random:0.3", "random:0.5");
+  o.timeout = 0;
+  const CosimReport whole = Run({}, o, nullptr, 0, true);
+  ASSERT_TRUE(whole.passed) << whole.failure;
+  ASSERT_TRUE(whole.contract.has_value());
+  EXPECT_EQ(whole.contract->in + whole.contract->out(), whole.vectors);
+  EXPECT_GT(whole.contract->in, 0U);
+  EXPECT_GT(whole.contract->out(), 0U);  // the corners include a = 1 + 1 LSB, p = -2
+  phongsim::InputContract c = lirp_.contract(*model_, cfg_);
+  phongsim::ContractCounts direct;
+  std::vector<std::int64_t> v(model_->inputs().size());
+  for (std::uint64_t i = 0; i < whole.vectors; ++i) {
+    stimulus_.vector(kSeed, i, v);
+    c.count(v, v.size(), direct);
+  }
+  EXPECT_EQ(whole.contract->in, direct.in);
+  EXPECT_EQ(whole.contract->by_clause, direct.by_clause);
+  EXPECT_NE(whole.summary().find(
+                fmt::format("{} in contract, {} out of contract (", direct.in, direct.out())),
+            std::string::npos)
+      << whole.summary();
+  o.jobs = 2;
+  const CosimReport split = Run({}, o, nullptr, 400, true);
+  EXPECT_EQ(split.contract->in, direct.in);
+  EXPECT_EQ(split.contract->by_clause, direct.by_clause);
+  // Without a contract nothing is counted and the summary says nothing about it.
+  const CosimReport none = Run({}, Options(), nullptr, 0, false);
+  EXPECT_FALSE(none.contract.has_value());
+  EXPECT_EQ(none.summary().find("contract"), std::string::npos);
+
+  const CosimReport failed = Run(Inject(Fault::corrupt_lsb, kK), Options(), nullptr, 0, true);
+  ASSERT_FALSE(failed.passed);
+  EXPECT_EQ(failed.contract->in + failed.contract->out(), failed.vectors);
+  EXPECT_LT(failed.vectors, whole.vectors);
+}
+
 }  // namespace

@@ -51,16 +51,18 @@ class Scoreboard {
  public:
   static constexpr std::uint64_t kBatch = 1024;
 
-  Scoreboard(PipelineModel& model, const Stimulus& stimulus, std::uint64_t seed,
-             std::uint64_t first, std::uint64_t count)
+  Scoreboard(PipelineModel& model, const Stimulus& stimulus, const InputContract& contract,
+             std::uint64_t seed, std::uint64_t first, std::uint64_t count)
       : model_(model),
         stimulus_(stimulus),
         seed_(seed),
         first_(first),
         count_(count),
         n_in_(model.inputs().size()),
-        n_out_(model.outputs().size()) {
+        n_out_(model.outputs().size()),
+        contract_(contract) {  // a fresh checker: this run starts from reset
     offset_.push_back(0);
+    if (contract_.defined()) counts_in_contract_.by_clause.resize(contract_.clauses().size());
   }
 
   // The vectors from position `pos` (relative to first) on, with the model's outputs for them.
@@ -69,6 +71,12 @@ class Scoreboard {
     inputs_.resize(n * n_in_);
     for (std::uint64_t i = 0; i < n; ++i) {
       stimulus_.vector(seed_, first_ + pos + i, std::span(inputs_).subspan(i * n_in_, n_in_));
+    }
+    if (contract_.defined()) {
+      for (std::uint64_t i = 0; i < n; ++i) {
+        clause_.push_back(static_cast<std::int16_t>(
+            contract_.check(std::span(inputs_).subspan(i * n_in_, n_in_))));
+      }
     }
     counts_.clear();
     (void)model_.eval_batch(inputs_, expected_, &counts_);
@@ -89,9 +97,16 @@ class Scoreboard {
     accept_.insert(accept_.end(), accepted.begin(), accepted.end());
     for (std::size_t j = 0; j < cycles.size(); ++j) {
       if (!check_one(outputs.subspan(j * n_out_, n_out_), cycles[j], kind, report, detail)) {
+        // The run stops in that cycle: it has accepted the inputs up to it (as the harness
+        // counts them).
+        if (contract_.defined()) {
+          tally(static_cast<std::size_t>(
+              std::upper_bound(accepted.begin(), accepted.end(), cycles[j]) - accepted.begin()));
+        }
         return j;
       }
     }
+    if (contract_.defined()) tally(accepted.size());
     compact();
     return cycles.size();
   }
@@ -111,6 +126,9 @@ class Scoreboard {
     if (front_ >= accepted()) return std::nullopt;
     return index(front_);
   }
+
+  // The accepted vectors inside and outside the input contract (empty when there is none).
+  [[nodiscard]] const ContractCounts& contract_counts() const { return counts_in_contract_; }
 
   [[nodiscard]] std::uint64_t latency_min() const { return latency_min_; }
   [[nodiscard]] std::uint64_t latency_max() const { return latency_max_; }
@@ -215,6 +233,23 @@ class Scoreboard {
     return "";
   }
 
+  // Counts the next `n` vectors the harness accepted against the contract: their clauses were
+  // found when the batch was made (clause_, from clause_head_ on).
+  void tally(std::size_t n) {
+    for (std::size_t k = 0; k < n && clause_head_ < clause_.size(); ++k) {
+      const int c = clause_[clause_head_++];
+      if (c == InputContract::kIn) {
+        ++counts_in_contract_.in;
+      } else {
+        ++counts_in_contract_.by_clause[static_cast<std::size_t>(c)];
+      }
+    }
+    if (clause_head_ >= 4 * kBatch) {
+      clause_.erase(clause_.begin(), clause_.begin() + static_cast<std::ptrdiff_t>(clause_head_));
+      clause_head_ = 0;
+    }
+  }
+
   // Forgets vectors that are done, now and then.
   void compact() {
     const std::uint64_t done = front_ - base_;
@@ -233,6 +268,10 @@ class Scoreboard {
   const Stimulus& stimulus_;
   std::uint64_t seed_, first_, count_;
   std::size_t n_in_, n_out_;
+  InputContract contract_;
+  std::vector<std::int16_t> clause_;  // per generated vector not yet accepted: its clause
+  std::size_t clause_head_ = 0;
+  ContractCounts counts_in_contract_;
   std::vector<std::int64_t> inputs_;  // the batch handed to the harness
   std::vector<std::uint32_t> counts_;
   std::vector<std::int64_t> expected_;  // outputs of vectors base_ .. (generated so far)
@@ -257,15 +296,17 @@ struct Phase {
   std::uint64_t latency_min = 0;
   std::uint64_t latency_max = 0;
   std::optional<std::uint64_t> failing_index;
+  ContractCounts contract;
 };
 
 // Runs vectors [first, first + count) (or the one in `only`) through a fresh DUT.
-Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, const CosimOptions& o,
-                const HarnessOptions& ho, std::uint64_t first, std::uint64_t count,
+Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus,
+                const InputContract& contract, const CosimOptions& o, const HarnessOptions& ho,
+                std::uint64_t first, std::uint64_t count,
                 const std::function<void(std::uint64_t, std::uint64_t)>& progress = {}) {
   Phase phase;
   model.reset();
-  Scoreboard board(model, stimulus, o.seed, first, count);
+  Scoreboard board(model, stimulus, contract, o.seed, first, count);
   HarnessHooks hooks;
   hooks.next_inputs = [&](std::uint64_t pos) { return board.next(pos); };
   std::uint64_t done = 0, reported = 0;
@@ -303,6 +344,7 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus, con
     phase.detail.message = phase.harness.message;
     if (phase.detail.cycle == 0) phase.detail.cycle = phase.harness.cycles - 1;
   }
+  phase.contract = board.contract_counts();
   phase.latency_min = board.latency_min();
   phase.latency_max = board.latency_max();
   if (board.failing_index()) phase.failing_index = board.failing_index();
@@ -358,7 +400,7 @@ Phase run_shard(const CosimSubject& s, PipelineModel& model, const Stimulus& sti
     const std::lock_guard lock(dut_mutex);
     dut = s.make_dut();
   }
-  Phase p = run_phase(model, *dut, stimulus, o, ho, shard.first, shard.count, progress);
+  Phase p = run_phase(model, *dut, stimulus, s.contract, o, ho, shard.first, shard.count, progress);
   const std::lock_guard lock(dut_mutex);
   dut.reset();
   return p;
@@ -368,6 +410,7 @@ struct MainRun {
   Phase last;                                         // the failing shard's, or the last one's
   Shard shard;                                        // which
   std::uint64_t inputs = 0, outputs = 0, cycles = 0;  // summed up to it
+  ContractCounts contract;                            // likewise
 };
 
 // Runs the shards in order, `o.jobs` at a time, up to the first that fails (the lowest-numbered:
@@ -437,6 +480,7 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
     run.inputs += phases[k].harness.inputs;
     run.outputs += phases[k].harness.outputs;
     run.cycles += phases[k].harness.cycles;
+    run.contract.add(phases[k].contract);
   }
   run.last = std::move(phases[last]);
   run.shard = shards[last];
@@ -483,11 +527,12 @@ std::string CosimReport::summary() const {
   const std::string vectors_in =
       passed ? fmt::format("{} vectors", vectors)
              : fmt::format("{} of {} vectors accepted", vectors, directed + random);
-  std::string s = fmt::format(
-      "{} {}/{}: {} ({} directed + {} random, seed {}), {} outputs, {} mismatches, {} cycles; "
-      "source {}, sink {}",
-      passed ? "PASS" : "FAIL", pipeline, config_name, vectors_in, directed, random, options.seed,
-      outputs, mismatches, cycles, options.source.str(), options.sink.str());
+  std::string s =
+      fmt::format("{} {}/{}: {} ({} directed + {} random, seed {}), ", passed ? "PASS" : "FAIL",
+                  pipeline, config_name, vectors_in, directed, random, options.seed);
+  if (contract) s += contract_text + ", ";
+  s += fmt::format("{} outputs, {} mismatches, {} cycles; source {}, sink {}", outputs, mismatches,
+                   cycles, options.source.str(), options.sink.str());
   if (throughput > 0) {
     s += fmt::format("; throughput {:.3f}/clock, latency {}", throughput, latency_min);
     if (latency_max != latency_min) s += fmt::format("..{}", latency_max);
@@ -535,6 +580,12 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   r.vectors = run.inputs;
   r.outputs = run.outputs - (rejects_an_output(main.kind) ? 1 : 0);
   r.cycles = run.cycles;
+  if (subject.contract.defined()) {
+    r.contract_clauses = subject.contract.clauses();
+    r.contract = run.contract;
+    r.contract->by_clause.resize(r.contract_clauses.size());
+    r.contract_text = subject.contract.summary(*r.contract);
+  }
   r.passed = main.kind.empty();
   if (!r.passed) {
     r.mismatches = rejects_an_output(main.kind) ? 1 : 0;
@@ -548,7 +599,8 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
       ho.trace_to = fail_cycle + 1;
       ho.stall_stream = run.shard.stream;
       DutPtr dut = make_dut();
-      (void)run_phase(model, *dut, stimulus, options, ho, run.shard.first, run.shard.count);
+      (void)run_phase(model, *dut, stimulus, subject.contract, options, ho, run.shard.first,
+                      run.shard.count);
       r.failure += fmt::format("  waveform of cycles {}..{}: {}\n", ho.trace_from, ho.trace_to,
                                options.trace_path);
     }
@@ -560,8 +612,8 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
     HarnessOptions mo;
     mo.timeout = options.timeout;
     DutPtr dut = make_dut();
-    const Phase m = run_phase(model, *dut, stimulus, options, mo, stimulus.directed_count(),
-                              options.measure_vectors);
+    const Phase m = run_phase(model, *dut, stimulus, InputContract(), options, mo,
+                              stimulus.directed_count(), options.measure_vectors);
     if (!m.kind.empty()) {
       // Report it as the run that reproduces it: these vectors, stall-free, no directed ones.
       CosimReport as_run = r;

@@ -12,6 +12,7 @@
 
 #include "model/config.h"
 #include "model/pipeline.h"
+#include "sim/cosim/contract.h"
 #include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stall.h"
 #include "sim/cosim/stimulus.h"
@@ -77,6 +78,11 @@ struct CosimReport {
   std::uint64_t random = 0;    // random vectors in the main run
   std::uint64_t vectors = 0;   // inputs accepted by the RTL in the main run
   std::uint64_t outputs = 0;   // outputs compared in the main run
+  // The accepted vectors of the main run inside and outside the subject's input contract (empty
+  // clauses and no counts when it has none).
+  std::vector<std::string> contract_clauses;
+  std::optional<ContractCounts> contract;
+  std::string contract_text;  // InputContract::summary of the counts, for the summary line
   std::uint64_t mismatches = 0;
   std::uint64_t cycles = 0;  // main run
   // From the stall-free measurement run (0 when it did not run: measured false).
@@ -115,6 +121,9 @@ struct CosimSubject {
   // Stimulus::group_start); 0: never split. The split decides every result, --jobs only how many
   // shards run at once.
   std::uint64_t shard_vectors = 0;
+  // The pipeline's input contract for this configuration; the report counts the main run's
+  // vectors against it. None (default): nothing counted.
+  InputContract contract;
 };
 
 CosimReport cosim(const CosimSubject& subject, const CosimOptions& options);

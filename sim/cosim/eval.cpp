@@ -132,8 +132,9 @@ class VectorReader {
 
 }  // namespace
 
-std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
-                     const std::filesystem::path& in, std::FILE* out, bool real) {
+EvalResult eval_csv(PipelineModel& model, const DutFactory& make_dut,
+                    const std::filesystem::path& in, std::FILE* out, bool real,
+                    InputContract contract) {
   const auto& ins = model.inputs();
   const auto& outs = model.outputs();
   VectorReader reader(in, ins, real);
@@ -141,7 +142,14 @@ std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
   std::string header;
   for (std::size_t i = 0; i < outs.size(); ++i) header += (i ? "," : "") + outs[i].name;
   fmt::print(out, "{}\n", header);
-  std::size_t rows = 0;
+  EvalResult result;
+  std::size_t& rows = result.rows;
+  const auto next = [&](std::span<std::int64_t> v) {
+    if (!reader.next(v)) return false;
+    ++result.vectors;
+    contract.count(v, v.size(), result.contract);
+    return true;
+  };
   std::string row;
   const auto write_row = [&](std::span<const std::int64_t> o) {
     row.clear();
@@ -157,7 +165,7 @@ std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
   if (!make_dut) {
     model.reset();
     std::vector<std::int64_t> results;
-    while (reader.next(vector)) {
+    while (next(vector)) {
       results.clear();
       model.eval(vector, results);
       for (std::size_t at = 0; at < results.size(); at += outs.size()) {
@@ -166,12 +174,10 @@ std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
     }
   } else {
     DutPtr dut = make_dut();
-    const HarnessResult r = stream_vectors(
-        *dut, ins.size(), outs.size(), [&](std::span<std::int64_t> v) { return reader.next(v); },
-        write_row);
+    const HarnessResult r = stream_vectors(*dut, ins.size(), outs.size(), next, write_row);
     if (r.reason != StopReason::finished) throw Error("RTL evaluation failed: " + r.message);
   }
-  return rows;
+  return result;
 }
 
 }  // namespace phongsim

@@ -17,14 +17,23 @@
 #include <filesystem>
 
 #include "model/pipeline.h"
+#include "sim/cosim/contract.h"
 #include "sim/cosim/cosim.h"
 
 namespace phongsim {
 
-// Writes the output CSV to `out` and returns the number of output rows. `make_dut` empty means
-// the model backend. Throws Error naming file, line and column for malformed input (what was
-// written to `out` by then is the caller's to discard: base/output_file.h does).
-std::size_t eval_csv(PipelineModel& model, const DutFactory& make_dut,
-                     const std::filesystem::path& in, std::FILE* out, bool real);
+struct EvalResult {
+  std::size_t rows = 0;       // output rows written
+  std::uint64_t vectors = 0;  // input vectors read
+  ContractCounts contract;    // the vectors against the input contract (none: nothing counted)
+};
+
+// Writes the output CSV to `out`. `make_dut` empty means the model backend. Counts the vectors
+// against `contract` in file order (the pipeline's, sim/cosim/contract.h; a default one counts
+// nothing). Throws Error naming file, line and column for malformed input (what was written to
+// `out` by then is the caller's to discard: base/output_file.h does).
+EvalResult eval_csv(PipelineModel& model, const DutFactory& make_dut,
+                    const std::filesystem::path& in, std::FILE* out, bool real,
+                    InputContract contract = {});
 
 }  // namespace phongsim

@@ -270,6 +270,46 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
   return make_kb_stimulus(model, KbSetupOptions::from_config(cfg));
 }
 
+// The domain of the accuracy claims (docs/kb.md, "Input contract"), word by word: the checker
+// follows the engine's parse (a header, then `count` event words) from reset.
+InputContract contract(const PipelineModel& model, const Config&) {
+  const KbFormats& f = dynamic_cast<const KbModel&>(model).formats();
+  const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
+  // The longest span whose accumulated rounding stays within half an output LSB.
+  const int guard = f.acc.frac_bits - f.out.frac_bits;
+  std::int64_t longest = 0;
+  while (longest < 4096 && guard >= 0 &&
+         kb_guard_bits_needed(static_cast<int>(longest + 1)) <= guard) {
+    ++longest;
+  }
+  struct Parse {
+    std::int64_t remaining = 0;  // event words still due for the current span
+    std::int64_t last = 0;       // its last pixel
+    std::int64_t previous = -1;  // its previous event's pixel
+  };
+  return InputContract(
+      {"f in [0, 1]", "|d1| <= 1, |d2| <= 2", fmt::format("length <= {}", longest),
+       "events ordered, before the last pixel"},
+      [one, longest, s = Parse{}](std::span<const std::int64_t> in) mutable {
+        // Fields: n, count, f, d1, d2, reload.
+        const bool header = s.remaining == 0;
+        if (header) {
+          s = Parse{in[1], in[0], -1};
+        } else {
+          --s.remaining;
+        }
+        const bool uses_d1 = header || in[5] != 0;
+        if (header && (in[2] < 0 || in[2] > one)) return 0;
+        if ((uses_d1 && (in[3] < -one || in[3] > one)) || in[4] < -2 * one || in[4] > 2 * one) {
+          return 1;
+        }
+        if (header) return in[0] + 1 <= longest ? InputContract::kIn : 2;
+        const bool ordered = in[0] > s.previous && in[0] < s.last;
+        s.previous = in[0];
+        return ordered ? InputContract::kIn : 3;
+      });
+}
+
 int latency(const Config&) { return 2; }  // header word to its first pixel (docs/kb.md)
 
 // kb_engine's control, cycle by cycle (its signal names), with the source offering a word every
@@ -513,6 +553,7 @@ const PipelineInfo& kb_pipeline() {
       .cycles = cycles,
       .stages = stages,
       .native = native,
+      .contract = contract,
       .float_error = float_error,
       .analyze = analyze,
       .mutants = {{"kb-event-late", "default", "rtl/kb/kb_engine.sv", "(head_n <= i_q)",

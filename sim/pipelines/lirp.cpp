@@ -45,6 +45,33 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
   return Stimulus(model, std::move(directed));
 }
 
+// The domain of the accuracy claim (docs/lirp.md, "Input contract").
+InputContract contract(const PipelineModel&, const Config& cfg) {
+  const LirpFormats f = LirpFormats::from_config(cfg);
+  const std::int64_t one_p = std::int64_t{1} << f.p.frac_bits;
+  const std::int64_t one_a = std::int64_t{1} << f.a.frac_bits;
+  const std::int64_t p_lo = f.p.is_signed ? -one_p : 0;
+  // The output range at the scale of p0 + a·(p1 - p0) (2^-(p + a fraction bits)), exactly.
+  const double scale = std::ldexp(1.0, f.p.frac_bits + f.a.frac_bits);
+  const double out_lo = fx::to_real(f.out.min_raw(), f.out) * scale;
+  const double out_hi = fx::to_real(f.out.max_raw(), f.out) * scale;
+  return InputContract({"a in [0, 1]", f.p.is_signed ? "p0, p1 in [-1, 1]" : "p0, p1 in [0, 1]",
+                        "p in the output range"},
+                       [=](std::span<const std::int64_t> in) {
+                         if (in[6] < 0 || in[6] > one_a) return 0;
+                         for (int c = 0; c < 6; ++c) {
+                           if (in[c] < p_lo || in[c] > one_p) return 1;
+                         }
+                         for (int c = 0; c < 3; ++c) {
+                           const double p =
+                               static_cast<double>(in[c]) * static_cast<double>(one_a) +
+                               static_cast<double>(in[6]) * static_cast<double>(in[3 + c] - in[c]);
+                           if (p < out_lo || p > out_hi) return 2;
+                         }
+                         return InputContract::kIn;
+                       });
+}
+
 int latency(const Config&) { return 3; }  // delta, prod, out (docs/lirp.md)
 
 std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
@@ -79,22 +106,96 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
   return n;
 }
 
+// The model against p0 + a·(p1 - p0) on exact reals clamped to the output range (the model sees
+// them quantized), in output LSBs, over vectors whose first broken clause is `clause`
+// (InputContract::kIn: inside the contract). Inside: components uniform over the contract's
+// interval, a in [0, 1]. Outside, each clause broken alone: a above 1; components over the whole
+// input format; p leaving the output range (found among in-range inputs; none where it cannot).
+ModelError lirp_contract_error(const Config& cfg, int clause, std::uint64_t samples,
+                               std::uint64_t seed) {
+  const LirpFormats f = LirpFormats::from_config(cfg);
+  LirpModel model(f);
+  InputContract contract = lirp_pipeline().contract(model, cfg);
+  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
+  const double lo = fx::to_real(f.out.min_raw(), f.out);
+  const double hi = fx::to_real(f.out.max_raw(), f.out);
+  const double p_lo = f.p.is_signed ? -1.0 : 0.0;
+  const double p_min = fx::to_real(f.p.min_raw(), f.p), p_max = fx::to_real(f.p.max_raw(), f.p);
+  const double a_max = fx::to_real(f.a.max_raw(), f.a);
+  const auto q = [](double x, fx::Format fmt) {
+    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  std::vector<std::int64_t> v(model.inputs().size());
+  std::vector<std::int64_t> result;
+  ModelError e;
+  double sum = 0;
+  std::uint64_t vectors = 0;
+  for (std::uint64_t i = 0; vectors < samples && i < 50 * samples; ++i) {
+    Rng rng(seed, kStimulusStream, i);
+    double p[6];
+    for (double& x : p) {
+      x = clause == 1 ? p_min + rng.uniform() * (p_max - p_min) : p_lo + rng.uniform() * (1 - p_lo);
+    }
+    const double a = clause == 0 ? 1 + rng.uniform() * (a_max - 1) : rng.uniform();
+    for (int c = 0; c < 6; ++c) v[static_cast<std::size_t>(c)] = q(p[c], f.p);
+    v[6] = q(a, f.a);
+    if (contract.check(v) != clause) continue;
+    ++vectors;
+    result.clear();
+    (void)model.eval(v, result);
+    for (int c = 0; c < 3; ++c) {
+      const double exact = std::clamp(lirp::lirp(p[c], p[3 + c], a), lo, hi);
+      const double d = std::abs(fx::to_real(result[static_cast<std::size_t>(c)], f.out) - exact);
+      e.max_abs = std::max(e.max_abs, d);
+      e.max_lsb = std::max(e.max_lsb, d / lsb);
+      sum += d / lsb;
+      ++e.samples;
+    }
+  }
+  e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
+  return e;
+}
+
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
              AnalysisReport& out) {
   out.print(
-      "LIRP output against p0 + a (p1 - p0) in float (inputs uniform: components in "
-      "[-1, 1], a in [0, 1], quantized to the input formats), in output LSBs; {} random "
-      "vectors, seed {}\n",
+      "LIRP output against p0 + a (p1 - p0) in float, inside the input contract (docs/lirp.md: "
+      "components uniform in [-1, 1], [0, 1] unsigned, a in [0, 1], p in the output range; "
+      "quantized to the input formats), in output LSBs; {} random vectors, seed {}\n",
       samples, seed);
   out.print("  {:<12} {:>8} {:>8} {:>8} {:>10} {:>10}\n", "config", "p", "a", "out", "max", "mean");
   out.table("LIRP output against p0 + a (p1 - p0) in float, in output LSBs",
             {"config", "p", "a", "out", "max_lsb", "mean_lsb"});
   for (const Config& cfg : configs) {
     const LirpFormats f = LirpFormats::from_config(cfg);
-    const ModelError e = lirp_float_error(cfg, samples, seed);
+    const ModelError e = lirp_contract_error(cfg, InputContract::kIn, samples, seed);
     out.print("  {:<12} {:>8} {:>8} {:>8} {:>10.4f} {:>10.4f}\n", cfg.name(), f.p.str(), f.a.str(),
               f.out.str(), e.max_lsb, e.mean_lsb);
     out.row({cfg.name(), f.p.str(), f.a.str(), f.out.str(), e.max_lsb, e.mean_lsb});
+  }
+  out.print(
+      "\nOutside the input contract, each clause broken alone, against the float value clamped "
+      "to the output range, in output LSBs ('-': no such vector for the configuration)\n");
+  out.print("  {:<12} {:<24} {:>8} {:>10} {:>10}\n", "config", "clause broken", "outputs", "max",
+            "mean");
+  out.table("LIRP outside the input contract, in output LSBs",
+            {"config", "clause", "outputs", "max_lsb", "mean_lsb"});
+  for (const Config& cfg : configs) {
+    const LirpFormats f = LirpFormats::from_config(cfg);
+    LirpModel model(f);
+    const InputContract contract = lirp_pipeline().contract(model, cfg);
+    for (std::size_t c = 0; c < contract.clauses().size(); ++c) {
+      const ModelError e = lirp_contract_error(cfg, static_cast<int>(c), samples, seed);
+      if (e.samples == 0) {
+        out.print("  {:<12} {:<24} {:>8} {:>10} {:>10}\n", cfg.name(), contract.clauses()[c], 0,
+                  "-", "-");
+        continue;
+      }
+      out.print("  {:<12} {:<24} {:>8} {:>10.4f} {:>10.4f}\n", cfg.name(), contract.clauses()[c],
+                e.samples, e.max_lsb, e.mean_lsb);
+      out.row({cfg.name(), contract.clauses()[c], static_cast<double>(e.samples), e.max_lsb,
+               e.mean_lsb});
+    }
   }
 }
 
@@ -160,6 +261,7 @@ const PipelineInfo& lirp_pipeline() {
           },
       .stages = stages,
       .native = native,
+      .contract = contract,
       .float_error = lirp_float_error,
       .analyze = analyze,
       .mutants = {{"round", "default", "rtl/common/fx_resize.sv",

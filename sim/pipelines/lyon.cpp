@@ -116,6 +116,44 @@ Stimulus make_lyon_stimulus(const PipelineModel& model) {
   return Stimulus(model, std::move(directed), random);
 }
 
+// ---- input contract ----
+
+InputContract lyon_contract(const LyonFormats& f) {
+  // Lengths from raw components, at the vector format's precision: a unit vector quantized to
+  // `vec` is within sqrt(3)/2 LSB of length 1, so two LSBs of tolerance.
+  const double vs = std::ldexp(1.0, -f.vec.frac_bits);
+  const double as = std::ldexp(1.0, -f.a.frac_bits);
+  const double tol = 2 * vs;
+  const double unit_lo = (1 - tol) * (1 - tol), unit_hi = (1 + tol) * (1 + tol);
+  const double np_lo = (std::sqrt(0.5) - tol) * (std::sqrt(0.5) - tol);
+  const double shin_one = std::ldexp(1.0, f.shin.frac_bits);
+  const auto len2 = [vs](const std::int64_t* c) {
+    const double x = static_cast<double>(c[0]) * vs, y = static_cast<double>(c[1]) * vs,
+                 z = static_cast<double>(c[2]) * vs;
+    return x * x + y * y + z * z;
+  };
+  return InputContract(
+      {"a in [0, 1]", "|N'| in [1/sqrt 2, 1]", "|V| = 1", "|L| = 1", "shininess >= 1"},
+      [=](std::span<const std::int64_t> in) {
+        const std::int64_t* p = in.data();
+        const double a = static_cast<double>(p[6]) * as;
+        if (a < 0 || a > 1) return 0;
+        double np2 = 0;  // N' = (1 - a)·N0 + a·N1, exactly (as reals)
+        for (int c = 0; c < 3; ++c) {
+          const double x =
+              (static_cast<double>(p[c]) * (1 - a) + static_cast<double>(p[3 + c]) * a) * vs;
+          np2 += x * x;
+        }
+        if (np2 < np_lo || np2 > unit_hi) return 1;
+        const double v2 = len2(p + 7);
+        if (v2 < unit_lo || v2 > unit_hi) return 2;
+        const double l2 = len2(p + 10);
+        if (l2 < unit_lo || l2 > unit_hi) return 3;
+        if (static_cast<double>(p[13]) < shin_one) return 4;
+        return InputContract::kIn;
+      });
+}
+
 // ---- analysis ----
 namespace {
 
@@ -170,13 +208,18 @@ LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples,
   const double spec_lsb = std::ldexp(1.0, -f.spec.frac_bits);
   const double diff_lsb = std::ldexp(1.0, -f.diff.frac_bits);
   LyonOutputError e;
-  e.samples = samples;
+  InputContract contract = lyon_contract(f);
   double spec_sum = 0;
   double diff_sum = 0;
   for (std::uint64_t i = 0; i < samples; ++i) {
     Rng rng(seed, kStimulusStream, i);
     const LyonPixel pixel = random_lyon_pixel(rng, f);
     const auto raw = quantize_lyon_pixel(pixel, f);
+    if (contract.check(raw) != InputContract::kIn) {  // the claims are made inside the contract
+      ++e.out_of_contract;
+      continue;
+    }
+    ++e.samples;
     const LyonStages s =
         model.stages({raw[0], raw[1], raw[2]}, {raw[3], raw[4], raw[5]}, raw[6],
                      {raw[7], raw[8], raw[9]}, {raw[10], raw[11], raw[12]}, raw[13]);
@@ -201,9 +244,100 @@ LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples,
     diff_sum += diff_err;
     if (ref.spec >= spec_lsb) ++e.spec_nonzero;
   }
-  e.spec_mean = spec_sum / static_cast<double>(samples);
-  e.diff_mean = diff_sum / static_cast<double>(samples);
+  const auto n = static_cast<double>(std::max<std::uint64_t>(e.samples, 1));
+  e.spec_mean = spec_sum / n;
+  e.diff_mean = diff_sum / n;
   return e;
+}
+
+std::vector<LyonContractRow> lyon_out_of_contract(const LyonModel& model, std::uint64_t samples,
+                                                  std::uint64_t seed) {
+  const LyonFormats& f = model.formats();
+  const lyon::DatapathParams params{f.halfway, f.norm, f.h_norm, f.k};
+  InputContract contract = lyon_contract(f);
+  const std::size_t clauses = contract.clauses().size();
+  std::vector<LyonContractRow> rows(clauses + 1);
+  for (std::size_t c = 0; c < clauses; ++c) rows[c].clause = contract.clauses()[c];
+  rows[clauses].clause = "any (arbitrary bits)";
+  const double vec_max = fx::to_real(f.vec.max_raw(), f.vec);
+  const double a_max = fx::to_real(f.a.max_raw(), f.a);
+  // Scales a vector by s, but keeps every component inside the format.
+  const auto scaled = [vec_max](Vec3 v, double s) {
+    const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    return v * std::min(s, vec_max / std::max(m, 1e-9));
+  };
+  const auto record = [&](LyonContractRow& r, const std::vector<std::int64_t>& raw) {
+    const std::span<const std::int64_t> in(raw);
+    const LyonStages s =
+        model.stages({raw[0], raw[1], raw[2]}, {raw[3], raw[4], raw[5]}, raw[6],
+                     {raw[7], raw[8], raw[9]}, {raw[10], raw[11], raw[12]}, raw[13]);
+    const double shin = fx::to_real(raw[13], f.shin);
+    const lyon::DatapathOut ref = lyon::datapath(
+        real_vec(in.subspan(0, 3), f.vec), real_vec(in.subspan(3, 3), f.vec),
+        fx::to_real(raw[6], f.a), real_vec(in.subspan(7, 3), f.vec),
+        real_vec(in.subspan(10, 3), f.vec), f.arrangement == 8 ? shin * shin : shin, params);
+    ++r.samples;
+    // Against the float value clamped to the output's range: what a saturating output could
+    // give at best (the float datapath's g2 grows without bound for long N').
+    const auto clamped = [](double x, fx::Format fmt) {
+      return std::clamp(x, fx::to_real(fmt.min_raw(), fmt), fx::to_real(fmt.max_raw(), fmt));
+    };
+    const double spec_err = std::abs(s.spec.real() - clamped(ref.spec, f.spec));
+    if (spec_err > r.spec_max_error || r.samples == 1) {
+      r.spec_max_error = spec_err;
+      r.worst_spec = s.spec.real();
+      r.worst_spec_float = clamped(ref.spec, f.spec);
+      r.worst = raw;
+    }
+    r.diff_max_error =
+        std::max(r.diff_max_error, std::abs(s.diff.real() - clamped(ref.diff, f.diff)));
+    r.diff_max = std::max(r.diff_max, s.diff.real());
+    if (s.diff.real() > 1) ++r.diff_above_one;
+  };
+  const std::uint64_t per_clause = std::max<std::uint64_t>(samples / (clauses + 1), 1);
+  const FieldRandom bits(model.inputs());
+  std::vector<std::int64_t> raw(model.inputs().size());
+  for (std::size_t c = 0; c <= clauses; ++c) {
+    for (std::uint64_t i = 0, tries = 0; i < per_clause && tries < 20 * per_clause; ++tries) {
+      Rng rng(seed, kStimulusStream, (std::uint64_t{c} << 40) + tries);
+      if (c == clauses) {
+        bits(rng, raw);
+      } else {  // an in-contract pixel with this one clause broken
+        LyonPixel p = random_lyon_pixel(rng, f);
+        const double u = rng.uniform();
+        switch (c) {
+          case 0:
+            p.a = 1 + u * (a_max - 1);
+            break;
+          case 1:  // N' too short or too long: both ends scaled alike
+            if (rng.below(2) == 0) {
+              p.n0 = scaled(p.n0, 0.7 * u);
+              p.n1 = scaled(p.n1, 0.7 * u);
+            } else {
+              p.n0 = scaled(p.n0, 1.05 + u);
+              p.n1 = scaled(p.n1, 1.05 + u);
+            }
+            break;
+          case 2:
+            p.v = scaled(p.v, rng.below(2) == 0 ? 0.95 * u : 1.05 + u);
+            break;
+          case 3:
+            p.l = scaled(p.l, rng.below(2) == 0 ? 0.95 * u : 1.05 + u);
+            break;
+          default:
+            p.shin = 0;
+            break;
+        }
+        raw = quantize_lyon_pixel(p, f);
+      }
+      const int broken = contract.check(raw);
+      if (broken == InputContract::kIn) continue;
+      if (c < clauses && static_cast<std::size_t>(broken) != c) continue;
+      record(rows[c], raw);
+      ++i;
+    }
+  }
+  return rows;
 }
 
 std::string lyon_stage_formats(const LyonModel& model) {
@@ -403,13 +537,55 @@ void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64
   out.table("Fixed-point output against the float datapath, in output LSBs",
             {"config", "spec_max", "spec_max_n_le_256", "spec_mean", "diff_max", "diff_mean",
              "highlights_percent"});
+  std::uint64_t left_out = 0;
   for (std::size_t i = 0; i < models.size(); ++i) {
     const LyonOutputError e = lyon_output_error(models[i], samples, seed);
+    left_out += e.out_of_contract;
     out.print("  {:<14} {:>9.2f} {:>13.2f} {:>9.3f} {:>9.2f} {:>9.3f} {:>10.1f}%\n",
               configs[i].name(), e.spec_max, e.spec_max_low_n, e.spec_mean, e.diff_max, e.diff_mean,
               100.0 * static_cast<double>(e.spec_nonzero) / static_cast<double>(e.samples));
     out.row({configs[i].name(), e.spec_max, e.spec_max_low_n, e.spec_mean, e.diff_max, e.diff_mean,
              100.0 * static_cast<double>(e.spec_nonzero) / static_cast<double>(e.samples)});
+  }
+  out.print(
+      "  (inside the input contract, docs/lyon.md: pixels outside it are left out; here {} of "
+      "{} over all configurations)\n",
+      left_out, samples * models.size());
+
+  // Outside the contract: each clause broken alone (an in-contract pixel with that one input
+  // moved out), and arbitrary bit patterns over the whole formats, as co-simulation draws them.
+  out.print(
+      "\nOutside the input contract: the fixed-point unit against the same datapath in float "
+      "(same quantized inputs, clamped to the output range), absolute; each clause broken "
+      "alone, then arbitrary bits; {} pixels per row, seed {}\n",
+      std::max<std::uint64_t>(samples / 6, 1), seed);
+  out.table("Outside the input contract: fixed point against the float datapath, absolute",
+            {"config", "clause", "pixels", "spec_max_error", "worst_spec", "worst_spec_float",
+             "diff_max_error", "diff_max", "diff_above_one"});
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    out.print("  {}\n  {:<24} {:>7} {:>10} {:>19} {:>10} {:>9} {:>9}\n", configs[i].name(),
+              "clause broken first", "pixels", "spec err", "worst: fixed/float", "diff err",
+              "diff max", "diff > 1");
+    const std::vector<LyonContractRow> rows = lyon_out_of_contract(models[i], samples, seed);
+    const LyonContractRow* worst = nullptr;
+    for (const LyonContractRow& r : rows) {
+      out.print("  {:<24} {:>7} {:>10.4f} {:>9.4f}/{:<9.4f} {:>10.4f} {:>9.4f} {:>9}\n", r.clause,
+                r.samples, r.spec_max_error, r.worst_spec, r.worst_spec_float, r.diff_max_error,
+                r.diff_max, r.diff_above_one);
+      out.row({configs[i].name(), r.clause, static_cast<double>(r.samples), r.spec_max_error,
+               r.worst_spec, r.worst_spec_float, r.diff_max_error, r.diff_max,
+               static_cast<double>(r.diff_above_one)});
+      if (worst == nullptr || r.spec_max_error > worst->spec_max_error) worst = &r;
+    }
+    if (worst != nullptr && !worst->worst.empty()) {
+      std::string fields;
+      const auto& ins = models[i].inputs();
+      for (std::size_t k = 0; k < ins.size(); ++k) {
+        fields += fmt::format("{}{}={}", k == 0 ? "" : " ", ins[k].name,
+                              fx::to_real(worst->worst[k], ins[k].fmt));
+      }
+      out.print("  largest spec error ({}): {}\n", worst->clause, fields);
+    }
   }
   for (std::size_t i = 0; i < models.size(); ++i) {
     out.print("\nStage formats of {} ({}, latency {} cycles)\n{}", configs[i].origin(),
@@ -447,6 +623,10 @@ const PipelineInfo& lyon_pipeline() {
           },
       .stages = stages,
       .native = native,
+      .contract =
+          [](const PipelineModel& model, const Config&) {
+            return lyon_contract(dynamic_cast<const LyonModel&>(model).formats());
+          },
       .float_error = float_error,
       .analyze = analyze,
       .mutants = {{"lyon-g2", "default", "rtl/lyon/lyon_norm.sv", "if (en_i[1]) g_q <= g_d;",

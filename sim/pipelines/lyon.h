@@ -39,6 +39,11 @@ struct LyonPixel {
 // Directed corners and random vectors: half random_lyon_pixel, half arbitrary bit patterns.
 [[nodiscard]] Stimulus make_lyon_stimulus(const PipelineModel& model);
 
+// The input contract (docs/lyon.md): a in [0, 1]; |N'| = |(1 - a)·N0 + a·N1| in [1/sqrt 2, 1],
+// where g1/g2 normalize (the lengths of interpolated unit normals up to 90 degrees apart); V and
+// L unit vectors; shininess at least 1. Lengths within two LSBs of the vector format.
+[[nodiscard]] InputContract lyon_contract(const LyonFormats& f);
+
 // ---- analysis ----
 
 // Length of a vector of `length` after approximate normalization: float g1 and g2, and the
@@ -61,9 +66,10 @@ struct LyonShapeRow {
 // The fixed-point unit against the same datapath in double precision (lyon::datapath), both fed
 // the same quantized inputs, on `samples` random_lyon_pixel()s from `seed`: errors in output LSBs.
 struct LyonOutputError {
-  std::uint64_t samples = 0;
-  double spec_max = 0;        // LSBs of the spec format
-  double spec_max_low_n = 0;  // the same over pixels with shininess n <= 256 (m <= 16)
+  std::uint64_t samples = 0;          // pixels inside the input contract, the ones measured
+  std::uint64_t out_of_contract = 0;  // pixels drawn but left out
+  double spec_max = 0;                // LSBs of the spec format
+  double spec_max_low_n = 0;          // the same over pixels with shininess n <= 256 (m <= 16)
   double spec_mean = 0;
   double diff_max = 0;  // LSBs of the diff format
   double diff_mean = 0;
@@ -73,6 +79,27 @@ struct LyonOutputError {
 // counts the input formats (what width exploration needs).
 [[nodiscard]] LyonOutputError lyon_output_error(const LyonModel& model, std::uint64_t samples,
                                                 std::uint64_t seed, bool exact_inputs = false);
+
+// Outside the input contract: per clause, pixels that break it (and no clause before it), each
+// an in-contract random_lyon_pixel with that one input moved out of its range; then a row of
+// arbitrary bit patterns over the whole formats (any clause). The fixed-point unit against the
+// float datapath on the same quantized inputs, clamped to the output formats' range (what a
+// saturating output could give at best; the float g2 grows without bound for long N'),
+// absolute (fractions of full scale), and the largest diffuse output (a unit normal's N·L never
+// exceeds 1).
+struct LyonContractRow {
+  std::string clause;
+  std::uint64_t samples = 0;
+  double spec_max_error = 0;
+  double worst_spec = 0, worst_spec_float = 0;  // at the largest spec error
+  std::vector<std::int64_t> worst;              // its inputs, raw
+  double diff_max_error = 0;
+  double diff_max = 0;
+  std::uint64_t diff_above_one = 0;
+};
+[[nodiscard]] std::vector<LyonContractRow> lyon_out_of_contract(const LyonModel& model,
+                                                                std::uint64_t samples,
+                                                                std::uint64_t seed);
 
 // Every stage's format and width for the configuration (one pixel of zeros traces them).
 [[nodiscard]] std::string lyon_stage_formats(const LyonModel& model);

@@ -313,6 +313,31 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
   return pixels;
 }
 
+// The domain of the accuracy claims (docs/quad.md, "Input contract"), per program.
+InputContract contract(const PipelineModel& model, const Config&) {
+  const QuadFormats f = dynamic_cast<const QuadModel&>(model).formats();
+  const std::int64_t sub = std::int64_t{1} << f.sub_bits;
+  const std::int64_t d_max = std::int64_t{1} << (QuadFormats::kCoordBits + 2 * f.sub_bits);
+  const int guard = f.acc.frac_bits - f.out.frac_bits;
+  return InputContract(
+      {"edges as the setup writes them", "box within the guard bits"},
+      [=](std::span<const std::int64_t> in) {
+        for (int k = 0; k < 3; ++k) {  // e<k>_{kind, q, r, d, dq, dr} from field 4 on
+          const std::int64_t* e = in.data() + 4 + 6 * k;
+          if (e[0] == 0) continue;
+          if (e[0] > 2 || e[3] < sub || e[3] > d_max || e[3] % sub != 0 || e[2] >= e[3] ||
+              e[5] >= e[3]) {
+            return 0;
+          }
+        }
+        const std::int64_t w = in[2] - in[0] + 1, h = in[3] - in[1] + 1;
+        if (w <= 0 || h <= 0) return InputContract::kIn;  // no pixels
+        return quad_guard_bits_needed(static_cast<int>(w), static_cast<int>(h)) <= guard
+                   ? InputContract::kIn
+                   : 1;
+      });
+}
+
 // A program's stages: every covered pixel's three channel accumulators (before clamping and
 // rounding), named by the pixel.
 std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_t> in) {
@@ -420,6 +445,7 @@ const PipelineInfo& quad_pipeline() {
       .cycles = cycles,
       .stages = stages,
       .native = native,
+      .contract = contract,
       .float_error = float_error,
       .analyze = analyze,
       .mutants =

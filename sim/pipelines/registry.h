@@ -15,6 +15,7 @@
 
 #include "model/config.h"
 #include "model/pipeline.h"
+#include "sim/cosim/contract.h"
 #include "sim/cosim/frame_cycles.h"
 #include "sim/cosim/report.h"
 #include "sim/cosim/rtl_plugin.h"
@@ -97,6 +98,13 @@ struct PipelineInfo {
   std::size_t (*native)(std::span<const std::int64_t> in, std::vector<std::int64_t>& out);
 
   // ---- accuracy ----
+  // The input contract of `cfg` (docs/<name>.md, "Input contract"): the domain on which the
+  // accuracy claims below and in the spec hold, as named clauses in the order they are checked
+  // and a check returning the first clause a vector breaks (sim/cosim/contract.h). Stateful
+  // pipelines check each word in stream order from reset. `eval` and `cosim` count vectors
+  // against it; `analyze` measures accuracy inside it and the worst behaviour outside.
+  InputContract (*contract)(const PipelineModel& model, const Config& cfg);
+
   ModelError (*float_error)(const Config& cfg, std::uint64_t samples, std::uint64_t seed);
   // `phongsim analyze <name>`: the approximations and fixed-point error of `configs`, as text
   // and, for JSON, its tables (sim/cosim/report.h).
