@@ -65,12 +65,15 @@ nlohmann::ordered_json to_json(const CosimFailure& f, const std::string& report)
           {"report", report}};
 }
 
-nlohmann::ordered_json to_json(const CosimReport& r, double seconds) {
+nlohmann::ordered_json to_json(const CosimReport& r, double seconds, const Target& t) {
   return {
       {"pipeline", r.pipeline},
       {"config", r.config_name},
       {"config_path", r.config_path},
       {"rtl", r.rtl_label},
+      {"x_init", t.x_init_mode()},
+      {"x_seed", t.x_init_seed() != 0 ? nlohmann::ordered_json(t.x_init_seed())
+                                      : nlohmann::ordered_json(nullptr)},
       {"seed", r.options.seed},
       {"vectors", r.vectors},
       {"directed_vectors", r.directed},
@@ -111,6 +114,7 @@ int run(CosimCli& c) {
   for (const auto& s : sources) source_patterns.push_back(StallPattern::parse(s));
   for (const auto& s : sinks) sink_patterns.push_back(StallPattern::parse(s));
   const std::size_t total = configs.size() * sources.size() * sinks.size();
+  c.target.check_x_init();
   if (!c.trace.empty() && c.target.simulator == "icarus") {
     throw Error("--trace is not available with --simulator icarus (use the Verilator build)");
   }
@@ -201,7 +205,7 @@ int run(CosimCli& c) {
     j["passed"] = failed == 0;
     j["runs_passed"] = runs.size() - failed;
     j["runs"] = nlohmann::ordered_json::array();
-    for (const CosimRun& r : runs) j["runs"].push_back(to_json(r.report, r.seconds));
+    for (const CosimRun& r : runs) j["runs"].push_back(to_json(r.report, r.seconds, c.target));
     json.write(j);
   }
   if (junit_file) {

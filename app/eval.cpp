@@ -26,12 +26,16 @@ int run_eval(const EvalCli& c) {
   } else if (!c.target.rtl.empty() || !c.target.plugin.empty() ||
              c.target.simulator != "verilator") {
     throw Error("--rtl, --rtl-plugin and --simulator need --backend rtl");
+  } else if (c.target.x_init != "zero" || *c.target.x_seed_opt) {
+    throw Error("--x-init and --x-seed need --backend rtl");
   }
   OutputFile out(c.out);
   const std::size_t rows = eval_csv(*l.model, make_dut, c.in, out.get(), c.real);
   out.commit();
-  fmt::print(out.is_stdout() ? stderr : stdout, "{} output rows from {} ({} backend, {}) -> {}\n",
-             rows, c.in, c.backend, l.cfg.origin(), c.out);
+  const std::string x_init =
+      c.target.x_init == "random" ? fmt::format(", x-init random, seed {}", c.target.x_seed) : "";
+  fmt::print(out.is_stdout() ? stderr : stdout, "{} output rows from {} ({} backend{}, {}) -> {}\n",
+             rows, c.in, c.backend, x_init, l.cfg.origin(), c.out);
   return 0;
 }
 
