@@ -188,6 +188,7 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
   t.check_x_init();
   RtlDesign design = design_of(l, t);
   if (t.x_init == "random") design.x_init = XInit::random;
+  design.coverage = !t.coverage_prefix.empty();
   Rtl rtl;
   if (!t.plugin.empty()) {
     const auto library = RtlLibrary::open_file(t.plugin, design);
@@ -209,10 +210,12 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     return rtl;
   }
   RtlPlugin plugin;
-  rtl.make_dut = rtl_duts(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing,
-                          stderr, &plugin, static_cast<std::uint32_t>(t.x_init_seed()));
+  rtl.make_dut =
+      rtl_duts(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing, stderr,
+               &plugin, static_cast<std::uint32_t>(t.x_init_seed()), t.coverage_prefix);
   const std::string x_init =
-      design.x_init == XInit::random ? fmt::format("; x-init random, seed {}", t.x_seed) : "";
+      std::string(design.coverage ? "; coverage" : "") +
+      (design.x_init == XInit::random ? fmt::format("; x-init random, seed {}", t.x_seed) : "");
   if (t.rtl.empty()) {
     rtl.label = fmt::format("built-in {} ({}{})", design.top, plugin.key, x_init);
   } else {

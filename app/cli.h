@@ -69,6 +69,7 @@ struct Target {
   std::string x_init = "zero";          // or random (--x-init): how Verilated registers start
   std::uint64_t x_seed = 1;             // --x-seed, with --x-init random
   CLI::Option* x_seed_opt = nullptr;
+  std::string coverage_prefix;  // cosim --coverage: the coverage plugin, files under this prefix
 
   // `rtl_options`: also --rtl, --top, --rtl-plugin and --no-build. `many_configs`: --config may
   // be given several times (into `configs`).
