@@ -10,6 +10,7 @@
 #include "base/error.h"
 #include "base/paths.h"
 #include "sim/cosim/bench.h"
+#include "sim/cosim/icarus_dut.h"
 #include "sim/render/render.h"
 
 namespace phongsim::cli {
@@ -128,11 +129,13 @@ struct BenchCli {
   Target target;
   std::uint64_t vectors = 200000;
   unsigned jobs = 1;
+  bool no_icarus = false;
   int size = 0;  // --size (alias --radius): as render --size; bench render's default 85
   MethodsBench methods;
   std::string json;
   CLI::Option* vectors_opt = nullptr;
   CLI::Option* jobs_opt = nullptr;
+  CLI::Option* no_icarus_opt = nullptr;
   CLI::Option* size_opt = nullptr;
   CLI::Option* scene_opt = nullptr;
   CLI::Option* method_opt = nullptr;
@@ -178,6 +181,7 @@ int run(BenchCli c) {
   if (render_bench || methods_bench) {
     refuse(c.vectors_opt, "benchmarks of a pipeline");
     refuse(c.jobs_opt, "benchmarks of a pipeline");
+    refuse(c.no_icarus_opt, "benchmarks of a pipeline");
   }
   if (!render_bench && !methods_bench) refuse(c.size_opt, "bench render and bench methods");
   check_distinct({{"--json", c.json}, {"--config", t.config}});
@@ -192,7 +196,10 @@ int run(BenchCli c) {
   const std::uint64_t vectors = quick_cap(c.vectors, kQuickVectors);
   std::string why_not;
   const NativeKernel native = native_kernel(l, why_not);
-  BenchReport r = bench(subject_of(l, t, stimulus), vectors, native, c.jobs);
+  std::function<DutFactory()> icarus;
+  if (!c.no_icarus) icarus = [&]() { return icarus_duts(design_of(l, t), *l.model, stderr); };
+  BenchReport r = bench(subject_of(l, t, stimulus), vectors, native, c.jobs, icarus,
+                        quick_cap(kIcarusCycles, 1000));
   if (!why_not.empty()) r.native_note = why_not;
   fmt::print(json.text(), "bench {}/{}: {} random vectors each\n{}", l.pipeline->name, l.cfg.name(),
              vectors, r.table());
@@ -215,6 +222,12 @@ int run(BenchCli c) {
     j["cosim_jobs"] = rate_json(r.cosim_jobs);
     j["cosim_jobs"]["jobs"] = r.jobs;
   }
+  j["icarus"] = nullptr;
+  if (r.icarus) {
+    j["icarus"] = {{"vectors", r.icarus_vectors}};
+    j["icarus"].update(rate_json(*r.icarus));
+    j["icarus"]["cycles_per_s"] = json_number(r.icarus->cycles_per_s);
+  }
   j["ratios"] = {
       {"model_native", r.native ? ratio(r.model.outputs_per_s, r.native->outputs_per_s)
                                 : nlohmann::ordered_json(nullptr)},
@@ -222,7 +235,9 @@ int run(BenchCli c) {
       {"rtl_bare_rtl", ratio(r.rtl.cycles_per_s, r.bare_rtl.cycles_per_s)},
       {"cosim_rtl", ratio(r.cosim.outputs_per_s, r.rtl.outputs_per_s)},
       {"jobs_cosim", r.jobs > 1 ? ratio(r.cosim_jobs.outputs_per_s, r.cosim.outputs_per_s)
-                                : nlohmann::ordered_json(nullptr)}};
+                                : nlohmann::ordered_json(nullptr)},
+      {"verilator_icarus", r.icarus ? ratio(r.rtl.cycles_per_s, r.icarus->cycles_per_s)
+                                    : nlohmann::ordered_json(nullptr)}};
   json.write(j);
   return 0;
 }
@@ -245,6 +260,10 @@ void add_bench(CLI::App& app, Action& action) {
                       "(cosim --jobs)")
           ->check(CLI::Range(1U, 256U))
           ->capture_default_str();
+  c->no_icarus_opt = cmd->add_flag(
+      "--no-icarus", c->no_icarus,
+      "a pipeline's benchmark: skip the Icarus Verilog measurement (and the Verilator/Icarus "
+      "ratio)");
   c->size_opt = add_int(*cmd, "--size,--radius", c->size,
                         "bench render and bench methods: as phongsim render --size — shinyballs' "
                         "sphere radius (bench render: 85, a 511-pixel-wide strip), a mesh "

@@ -122,6 +122,34 @@ void Target::add_simulator_option(CLI::App& cmd) {
                  "(four-state: X or Z on an output is a failure; docs/cosim.md)")
       ->check(CLI::IsMember({"verilator", "icarus"}))
       ->capture_default_str();
+  cmd.add_option("--x-init", x_init,
+                 "how the Verilated registers start: zero, or random (a plugin built with "
+                 "-x-assign unique -x-initial unique whose power-up state and X assignments "
+                 "come from --x-seed; docs/verification.md)")
+      ->check(CLI::IsMember({"zero", "random"}))
+      ->capture_default_str();
+  x_seed_opt = add_count(cmd, "--x-seed", x_seed, "seed of the power-up state (--x-init random)",
+                         0x7fffffff, 1);
+}
+
+void Target::check_x_init() const {
+  if (x_init != "random") {
+    if (x_seed_opt != nullptr && *x_seed_opt) throw Error("--x-seed needs --x-init random");
+    return;
+  }
+  if (simulator == "icarus") {
+    throw Error(
+        "--x-init random is a Verilator build option; Icarus Verilog is four-state: its registers "
+        "start X, and an X on a valid output already fails the run");
+  }
+  if (!plugin.empty()) {
+    throw Error("--x-init random builds a plugin of its own: not with --rtl-plugin");
+  }
+}
+
+std::string Target::x_init_mode() const {
+  if (simulator == "icarus") return "x";
+  return x_init;
 }
 
 Loaded load(const Target& t) {
@@ -157,7 +185,10 @@ std::string quoted(const std::string& s) {
 }  // namespace
 
 Rtl rtl_of(const Loaded& l, const Target& t) {
-  const RtlDesign design = design_of(l, t);
+  t.check_x_init();
+  RtlDesign design = design_of(l, t);
+  if (t.x_init == "random") design.x_init = XInit::random;
+  design.coverage = !t.coverage_prefix.empty();
   Rtl rtl;
   if (!t.plugin.empty()) {
     const auto library = RtlLibrary::open_file(t.plugin, design);
@@ -179,16 +210,23 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     return rtl;
   }
   RtlPlugin plugin;
-  rtl.make_dut = rtl_duts(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing,
-                          stderr, &plugin);
+  rtl.make_dut =
+      rtl_duts(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing, stderr,
+               &plugin, static_cast<std::uint32_t>(t.x_init_seed()), t.coverage_prefix);
+  const std::string x_init =
+      std::string(design.coverage ? "; coverage" : "") +
+      (design.x_init == XInit::random ? fmt::format("; x-init random, seed {}", t.x_seed) : "");
   if (t.rtl.empty()) {
-    rtl.label = fmt::format("built-in {} ({})", design.top, plugin.key);
+    rtl.label = fmt::format("built-in {} ({}{})", design.top, plugin.key, x_init);
   } else {
-    rtl.label = fmt::format("{} from --rtl, {} file{} ({})", design.top, design.files.size(),
-                            design.files.size() == 1 ? "" : "s", plugin.key);
+    rtl.label = fmt::format("{} from --rtl, {} file{} ({}{})", design.top, design.files.size(),
+                            design.files.size() == 1 ? "" : "s", plugin.key, x_init);
     rtl.options = " --rtl";
     for (const auto& p : t.rtl) rtl.options += " " + quoted(p);
     if (!t.top.empty()) rtl.options += " --top " + quoted(t.top);
+  }
+  if (design.x_init == XInit::random) {
+    rtl.options += fmt::format(" --x-init random --x-seed {}", t.x_seed);
   }
   return rtl;
 }

@@ -67,12 +67,23 @@ struct Target {
   std::string top;                      // its top module (--top; default: the built-in top's name)
   std::string plugin;                   // a plugin file given by hand (--rtl-plugin)
   std::string simulator = "verilator";  // or icarus (--simulator)
+  std::string x_init = "zero";          // or random (--x-init): how Verilated registers start
+  std::uint64_t x_seed = 1;             // --x-seed, with --x-init random
+  CLI::Option* x_seed_opt = nullptr;
+  std::string coverage_prefix;  // cosim --coverage: the coverage plugin, files under this prefix
 
   // `rtl_options`: also --rtl, --top, --rtl-plugin and --no-build. `many_configs`: --config may
   // be given several times (into `configs`).
   void add_options(CLI::App& cmd, bool rtl_options = true, bool many_configs = false);
-  // --simulator, for the commands that run the RTL vector by vector (cosim, eval).
+  // --simulator, --x-init and --x-seed, for the commands that run the RTL vector by vector
+  // (cosim, eval).
   void add_simulator_option(CLI::App& cmd);
+  // Error for --x-seed without --x-init random, and for --x-init random with --simulator icarus
+  // or --rtl-plugin.
+  void check_x_init() const;
+  // "zero", "random" or, for Icarus (four-state), "x"; and the seed, 0 when there is none.
+  [[nodiscard]] std::string x_init_mode() const;
+  [[nodiscard]] std::uint64_t x_init_seed() const { return x_init == "random" ? x_seed : 0; }
 };
 
 struct Loaded {

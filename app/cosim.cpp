@@ -14,6 +14,7 @@
 #include "base/error.h"
 #include "base/output_file.h"
 #include "base/temporaries.h"
+#include "sim/cosim/coverage.h"
 #include "sim/cosim/waveform.h"
 
 namespace phongsim::cli {
@@ -29,6 +30,7 @@ struct CosimCli {
   std::string trace;
   std::string json;
   std::string junit;
+  std::string coverage;
   CLI::Option* vectors_opt = nullptr;
   CLI::Option* index_opt = nullptr;
 };
@@ -65,12 +67,15 @@ nlohmann::ordered_json to_json(const CosimFailure& f, const std::string& report)
           {"report", report}};
 }
 
-nlohmann::ordered_json to_json(const CosimReport& r, double seconds) {
+nlohmann::ordered_json to_json(const CosimReport& r, double seconds, const Target& t) {
   return {
       {"pipeline", r.pipeline},
       {"config", r.config_name},
       {"config_path", r.config_path},
       {"rtl", r.rtl_label},
+      {"x_init", t.x_init_mode()},
+      {"x_seed", t.x_init_seed() != 0 ? nlohmann::ordered_json(t.x_init_seed())
+                                      : nlohmann::ordered_json(nullptr)},
       {"seed", r.options.seed},
       {"vectors", r.vectors},
       {"directed_vectors", r.directed},
@@ -117,6 +122,14 @@ int run(CosimCli& c) {
   for (const auto& s : sources) source_patterns.push_back(StallPattern::parse(s));
   for (const auto& s : sinks) sink_patterns.push_back(StallPattern::parse(s));
   const std::size_t total = configs.size() * sources.size() * sinks.size();
+  c.target.check_x_init();
+  if (!c.coverage.empty() && c.target.simulator == "icarus") {
+    throw Error(
+        "--coverage is Verilator's (line and toggle coverage): not with --simulator icarus");
+  }
+  if (!c.coverage.empty() && !c.target.plugin.empty()) {
+    throw Error("--coverage builds a plugin of its own: not with --rtl-plugin");
+  }
   if (!c.trace.empty() && c.target.simulator == "icarus") {
     throw Error("--trace is not available with --simulator icarus (use the Verilator build)");
   }
@@ -140,6 +153,10 @@ int run(CosimCli& c) {
     targets.push_back(t);
   }
   JsonOutput json(c.json);
+  if (!c.coverage.empty()) {
+    const std::string prefix = coverage_prefix(c.coverage);
+    for (Target& t : targets) t.coverage_prefix = prefix;
+  }
   std::optional<OutputFile> trace_file;
   std::optional<OutputFile> junit_file;
   std::optional<TempDir> fst_dir;  // a VCD is converted from an FST written here
@@ -202,12 +219,38 @@ int run(CosimCli& c) {
   }
   std::size_t failed = 0;
   for (const CosimRun& r : runs) failed += r.report.passed ? 0 : 1;
+  std::optional<CoverageSummary> coverage;
+  if (!c.coverage.empty()) {
+    coverage = merge_coverage(c.coverage);
+    const std::filesystem::path dir = c.coverage;
+    fmt::print(
+        text,
+        "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points), toggles {:.1f} % "
+        "({} of {}); {}, {}\n",
+        coverage->files, coverage->files == 1 ? "" : "s", (dir / "data").string(),
+        coverage->line_percent(), coverage->line_hit, coverage->line_points,
+        coverage->toggle_percent(), coverage->toggle_hit, coverage->toggle_points,
+        (dir / "coverage.info").string(), (dir / "html" / "index.html").string());
+  }
   if (json.wanted()) {
     nlohmann::ordered_json j = json_document("cosim");
     j["passed"] = failed == 0;
     j["runs_passed"] = runs.size() - failed;
     j["runs"] = nlohmann::ordered_json::array();
-    for (const CosimRun& r : runs) j["runs"].push_back(to_json(r.report, r.seconds));
+    for (const CosimRun& r : runs) j["runs"].push_back(to_json(r.report, r.seconds, c.target));
+    j["coverage"] = nullptr;
+    if (coverage) {
+      const std::filesystem::path dir = c.coverage;
+      j["coverage"] = {
+          {"line_percent", coverage->line_percent()},
+          {"toggle_percent", coverage->toggle_percent()},
+          {"lines", {{"hit", coverage->line_hit}, {"total", coverage->line_points}}},
+          {"toggles", {{"hit", coverage->toggle_hit}, {"total", coverage->toggle_points}}},
+          {"coverpoints", nullptr},
+          {"data_files", coverage->files},
+          {"info", (dir / "coverage.info").string()},
+          {"html", (dir / "html" / "index.html").string()}};
+    }
     json.write(j);
   }
   if (junit_file) {
@@ -260,6 +303,10 @@ void add_cosim(CLI::App& app, Action& action) {
   cmd->add_option("--json", c->json,
                   "write the results as JSON (docs/json.md: every run of the matrix); - is "
                   "standard output");
+  cmd->add_option("--coverage", c->coverage,
+                  "RTL line and toggle coverage: a coverage build of the plugin writes its counts "
+                  "into DIR/data; every run's there so far is merged into DIR/coverage.info (lcov) "
+                  "and DIR/html (docs/verification.md)");
   cmd->add_option("--junit", c->junit,
                   "write JUnit XML: one testcase per configuration x stall pattern run");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });

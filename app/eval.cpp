@@ -29,15 +29,19 @@ int run_eval(const EvalCli& c) {
   } else if (!c.target.rtl.empty() || !c.target.plugin.empty() ||
              c.target.simulator != "verilator") {
     throw Error("--rtl, --rtl-plugin and --simulator need --backend rtl");
+  } else if (c.target.x_init != "zero" || *c.target.x_seed_opt) {
+    throw Error("--x-init and --x-seed need --backend rtl");
   }
   JsonOutput json(c.json);
   OutputFile out(c.out);
   const InputContract contract = l.pipeline->contract(*l.model, l.cfg);
   const EvalResult r = eval_csv(*l.model, make_dut, c.in, out.get(), c.real, contract);
   out.commit();
+  const std::string x_init =
+      c.target.x_init == "random" ? fmt::format(", x-init random, seed {}", c.target.x_seed) : "";
   fmt::print(out.is_stdout() || json.to_stdout() ? stderr : stdout,
-             "{} output rows from {} ({} backend, {}) -> {}; {} vectors: {}\n", r.rows, c.in,
-             c.backend, l.cfg.origin(), c.out, r.vectors, contract.summary(r.contract));
+             "{} output rows from {} ({} backend{}, {}) -> {}; {} vectors: {}\n", r.rows, c.in,
+             c.backend, x_init, l.cfg.origin(), c.out, r.vectors, contract.summary(r.contract));
   if (json.wanted()) {
     nlohmann::ordered_json j = json_document("eval");
     j["pipeline"] = l.pipeline->name;

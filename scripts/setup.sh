@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build   # C++20 toolchain and build
   verilator zlib1g-dev                # RTL simulation (zlib for FST waveforms)
   iverilog                            # the second simulator (--simulator icarus)
+  lcov                                # genhtml: the HTML report of cosim --coverage
   libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
   libpng-dev                          # PNG images (sim/render/image.h)
   libtinyobjloader-dev                # OBJ meshes (sim/render/mesh.h)

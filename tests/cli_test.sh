@@ -84,7 +84,8 @@ EOT
 
   bench-json)
     # Every pipeline's bench: the native kernel is checked bit-identical to the model on the bench
-    # vectors (an error otherwise), and the JSON has every part and ratio. No timing is asserted.
+    # vectors (an error otherwise), and the JSON has every part and ratio (Icarus's too). No
+    # timing is asserted.
     for p in lirp lyon kb quad; do
       "$phongsim" bench "$p" --vectors 5000 --jobs 2 --json "$tmp/$p.json" >"$tmp/out" 2>&1 ||
         fail "bench $p: $(cat "$tmp/out")"
@@ -94,9 +95,11 @@ EOT
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["pipeline"] == sys.argv[2] and r["config"] == "default" and r["vectors"] == 5000, r
-for part in ("model", "native", "rtl", "bare_rtl", "cosim", "cosim_jobs"):
+for part in ("model", "native", "rtl", "bare_rtl", "cosim", "cosim_jobs", "icarus"):
     assert r[part]["vectors_per_s"] > 0 and r[part]["outputs_per_s"] > 0, (part, r)
-for ratio in ("model_native", "model_rtl", "rtl_bare_rtl", "cosim_rtl", "jobs_cosim"):
+assert 1 <= r["icarus"]["vectors"] <= 5000 and r["icarus"]["cycles_per_s"] > 0, r
+for ratio in ("model_native", "model_rtl", "rtl_bare_rtl", "cosim_rtl", "jobs_cosim",
+              "verilator_icarus"):
     assert r["ratios"][ratio] > 0, (ratio, r)
 EOT
     done

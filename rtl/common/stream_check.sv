@@ -23,6 +23,8 @@ module stream_check #(
 
 `ifndef SYNTHESIS
 `ifndef FORMAL  // Yosys's formal front end reads the file without SYNTHESIS and has no $error
+  // A check, not design logic: left out of RTL coverage.
+  // verilator coverage_off
   logic             stalled_q;  // offered and not taken in the previous cycle
   logic [Width-1:0] data_q;
   // Checked at the clock edge (the cycle's settled values), out of reset only.
@@ -39,6 +41,7 @@ module stream_check #(
   always_ff @(posedge clk_i) begin
     data_q <= data_i;
   end
+  // verilator coverage_on
 `endif
 `endif
 

@@ -60,7 +60,8 @@ std::uint64_t run_chunks(std::span<const std::int64_t> inputs, std::size_t n_in,
 }  // namespace
 
 BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const NativeKernel& native,
-                  unsigned jobs) {
+                  unsigned jobs, const std::function<DutFactory()>& icarus,
+                  std::uint64_t icarus_cycles) {
   BenchReport r;
   r.vectors = vectors;
   r.jobs = jobs;
@@ -116,6 +117,30 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
     const double s = seconds_since(start);
     r.rtl = rate(h.inputs, h.outputs, s);
     r.rtl.cycles_per_s = static_cast<double>(h.cycles) / s;
+    if (icarus) {
+      const double cycles_per_vector =
+          static_cast<double>(h.cycles) / static_cast<double>(std::max<std::uint64_t>(1, vectors));
+      r.icarus_vectors = std::clamp<std::uint64_t>(
+          static_cast<std::uint64_t>(static_cast<double>(icarus_cycles) / cycles_per_vector), 1,
+          vectors);
+      // Whole groups of vectors (kb's span programs), as the harness wants them.
+      r.icarus_vectors = std::min<std::uint64_t>(
+          vectors, stimulus.group_start(stimulus.directed_count() + r.icarus_vectors) -
+                       stimulus.directed_count());
+    }
+  }
+  if (icarus) {
+    DutPtr dut = icarus()();
+    const auto part = std::span<const std::int64_t>(inputs).first(r.icarus_vectors * n_in);
+    const auto start = std::chrono::steady_clock::now();
+    const HarnessResult h = stream_vectors(*dut, n_in, model.outputs().size(), part,
+                                           [](std::span<const std::int64_t>) {});
+    const double s = seconds_since(start);
+    if (h.reason != StopReason::finished) {
+      throw Error(fmt::format("bench: the Icarus run stopped: {}", h.message));
+    }
+    r.icarus = rate(h.inputs, h.outputs, s);
+    r.icarus->cycles_per_s = static_cast<double>(h.cycles) / s;
   }
   {
     DutPtr dut = subject.make_dut();
@@ -151,6 +176,10 @@ std::string BenchReport::table() const {
   s += row("Verilated RTL", rtl, fmt::format("   ({:.0f} cycles/s)", rtl.cycles_per_s));
   s += row("bare Verilator loop", bare_rtl,
            fmt::format("   ({:.0f} cycles/s)", bare_rtl.cycles_per_s));
+  if (icarus) {
+    s += row(fmt::format("Icarus RTL ({} vectors)", icarus_vectors), *icarus,
+             fmt::format("   ({:.0f} cycles/s)", icarus->cycles_per_s));
+  }
   s += row("co-simulation", cosim);
   if (jobs > 1) s += row(fmt::format("co-simulation, {} jobs", jobs), cosim_jobs);
   const auto ratio = [](std::string_view what, double x) {
@@ -160,6 +189,7 @@ std::string BenchReport::table() const {
   s += ratio("model / RTL", model.outputs_per_s / rtl.outputs_per_s);
   s += ratio("RTL / bare loop", rtl.cycles_per_s / bare_rtl.cycles_per_s);
   s += ratio("co-sim / RTL", cosim.outputs_per_s / rtl.outputs_per_s);
+  if (icarus) s += ratio("Verilator / Icarus", rtl.cycles_per_s / icarus->cycles_per_s);
   if (jobs > 1) {
     s +=
         ratio(fmt::format("{} jobs / 1 job", jobs), cosim_jobs.outputs_per_s / cosim.outputs_per_s);

@@ -2,7 +2,9 @@
 // vectors: the model (its batch API), a hand-written native kernel of the default configuration
 // (the model's headroom), the Verilated RTL through the harness (no checking), the same top in a
 // bare Verilator loop (the harness's headroom), and the full co-simulation; in vectors and outputs
-// per second, with their ratios. A benchmark prints numbers; no test asserts a timing.
+// per second, with their ratios; and the same RTL in Icarus Verilog through the same harness, on
+// fewer vectors (Icarus is slow), for the Verilator/Icarus ratio. A benchmark prints numbers; no
+// test asserts a timing.
 #pragma once
 
 #include <cstdint>
@@ -39,13 +41,25 @@ struct BenchReport {
   unsigned jobs = 1;                // > 1: co-simulation with that many workers too
   BenchRate cosim_jobs;
   std::string native_note;  // why there is no native figure, or what it was checked against
+  // The RTL in Icarus Verilog through the harness, on the first icarus_vectors bench vectors
+  // (about kIcarusCycles cycles' worth); absent when not measured.
+  std::optional<BenchRate> icarus;
+  std::uint64_t icarus_vectors = 0;
 
   [[nodiscard]] std::string table() const;  // ratios are of outputs per second (RTL: cycles)
 };
 
+// Icarus's share of a bench: as many of the bench vectors as take about this many cycles in the
+// Verilated RTL (at least one), since Icarus simulates some 10^3 to 10^4 cycles per second.
+inline constexpr std::uint64_t kIcarusCycles = 5000;
+
 // `native`: the pipeline's kernel when it implements this configuration (else empty); it is run
 // on the bench vectors and must give the model's outputs bit for bit (Error otherwise).
+// `icarus` (optional): makes the DUT factory of the same design in Icarus Verilog (icarus_dut.h;
+// called once the bench vectors are made), timed through the harness on about `icarus_cycles`
+// cycles' worth of the vectors.
 BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const NativeKernel& native,
-                  unsigned jobs = 1);
+                  unsigned jobs = 1, const std::function<DutFactory()>& icarus = {},
+                  std::uint64_t icarus_cycles = kIcarusCycles);
 
 }  // namespace phongsim

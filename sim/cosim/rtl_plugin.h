@@ -9,6 +9,7 @@
 // never an old result.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -33,6 +34,13 @@ struct PortBinding {
   std::vector<std::string> fields;
 };
 
+// How the registers of a Verilated design start. zero: every register and every X assignment 0
+// (-x-assign fast -x-initial fast; the plugin every command uses by default). random: a plugin
+// of its own (-x-assign unique -x-initial unique; its key differs, so the zero plugin is
+// untouched) whose registers power up, and whose X assignments evaluate, to values drawn from a
+// seed given when each DUT is made (Verilator's randReset(2) and randSeed(seed)).
+enum class XInit { zero, random };
+
 // Everything that determines a plugin besides the tools.
 struct RtlDesign {
   std::string name;                          // what it is, for messages and cache entries
@@ -40,6 +48,10 @@ struct RtlDesign {
   std::vector<std::filesystem::path> files;  // SystemVerilog sources, in compile order
   std::vector<RtlParam> params;              // the top's parameters
   std::vector<PortBinding> ports;
+  XInit x_init = XInit::zero;
+  // A coverage variant (Verilator --coverage-line --coverage-toggle; its own key): each DUT
+  // writes its counts when destroyed (RtlLibrary::create).
+  bool coverage = false;
 };
 
 // "-GPFmt=65802 -GAFmt=266 ...": the parameters as Verilator takes them.
@@ -99,8 +111,15 @@ class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
   RtlLibrary& operator=(const RtlLibrary&) = delete;
 
   // A fresh DUT instance (own Verilator context), ports bound to the model's fields. Error when a
-  // port was built narrower or wider than the model's fields need now.
-  [[nodiscard]] DutPtr create(const PipelineModel& model);
+  // port was built narrower or wider than the model's fields need now. A plugin built with
+  // XInit::random draws its power-up state from `x_seed` (1..2^31-1; the same seed gives the same
+  // state); the seed is ignored by a zero plugin. A coverage plugin's DUT writes its coverage
+  // counts (Verilator's coverage.dat format) to `coverage_prefix`<n>.dat when destroyed (n
+  // counts the DUTs the plugin has made); an empty prefix writes nothing.
+  [[nodiscard]] DutPtr create(const PipelineModel& model, std::uint32_t x_seed = 1,
+                              const std::string& coverage_prefix = "");
+  // Whether the plugin was built with XInit::random.
+  [[nodiscard]] bool x_random() const { return x_seed_ != nullptr; }
 
  private:
   RtlLibrary() = default;
@@ -108,6 +127,8 @@ class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
   void* handle_ = nullptr;
   RtlCreateFn create_ = nullptr;
   RtlInfoFn info_ = nullptr;
+  void (*x_seed_)(int) = nullptr;            // phongsim_rtl_x_seed of an XInit::random plugin
+  void (*coverage_)(const char*) = nullptr;  // phongsim_rtl_coverage_prefix of a coverage plugin
   std::filesystem::path path_;
 };
 
@@ -115,8 +136,12 @@ class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
 using DutFactory = std::function<DutPtr()>;
 
 // The DUTs of `design` for `model`'s fields: located or built (policy, progress on `log`) and
-// loaded; `located` (optional) receives which plugin. `model` must outlive the factory.
+// loaded; `located` (optional) receives which plugin. `model` must outlive the factory. With
+// design.x_init random, every DUT powers up from `x_seed`; with design.coverage, each writes
+// its counts to `coverage_prefix`<n>.dat (RtlLibrary::create).
 [[nodiscard]] DutFactory rtl_duts(const RtlDesign& design, const PipelineModel& model,
-                                  RtlBuild policy, std::FILE* log, RtlPlugin* located = nullptr);
+                                  RtlBuild policy, std::FILE* log, RtlPlugin* located = nullptr,
+                                  std::uint32_t x_seed = 1,
+                                  const std::string& coverage_prefix = "");
 
 }  // namespace phongsim

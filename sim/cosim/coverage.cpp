@@ -1,0 +1,106 @@
+#include "sim/cosim/coverage.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <vector>
+
+#include "base/error.h"
+#include "base/process.h"
+
+namespace phongsim {
+namespace fs = std::filesystem;
+
+double CoverageSummary::line_percent() const {
+  return line_points == 0 ? 0.0 : 100.0 * static_cast<double>(line_hit) / line_points;
+}
+
+double CoverageSummary::toggle_percent() const {
+  return toggle_points == 0 ? 0.0 : 100.0 * static_cast<double>(toggle_hit) / toggle_points;
+}
+
+std::string coverage_prefix(const fs::path& dir) {
+  const fs::path data = dir / "data";
+  std::error_code ec;
+  fs::create_directories(data, ec);
+  if (ec) throw Error(fmt::format("cannot create {}: {}", data.string(), ec.message()));
+  const auto now = std::chrono::duration_cast<std::chrono::microseconds>(
+                       std::chrono::system_clock::now().time_since_epoch())
+                       .count();
+  return (data / fmt::format("{}-{}-", now, getpid())).string();
+}
+
+namespace {
+
+// A point's field `name` from its key ("\x01name\x02value\x01..."), or "".
+std::string field(const std::string& key, std::string_view name) {
+  const std::string mark = fmt::format("\x01{}\x02", name);
+  const auto at = key.find(mark);
+  if (at == std::string::npos) return "";
+  const auto start = at + mark.size();
+  return key.substr(start, key.find('\x01', start) - start);
+}
+
+// Adds every point of one coverage.dat ("C '<key>' <count>" lines) to `points`.
+void read_points(const fs::path& file, std::map<std::string, std::uint64_t>& points) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(fmt::format("cannot read {}", file.string()));
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("C '", 0) != 0) continue;
+    const auto end = line.rfind('\'');
+    if (end <= 2) throw Error(fmt::format("{}: not a Verilator coverage file", file.string()));
+    points[line.substr(3, end - 3)] += std::stoull(line.substr(end + 1));
+  }
+}
+
+std::string first_lines(const std::string& text) {
+  std::string s = text.substr(0, text.find('\n'));
+  return s.empty() ? "no output" : s;
+}
+
+}  // namespace
+
+CoverageSummary merge_coverage(const fs::path& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir / "data", ec)) {
+    if (e.path().extension() == ".dat") files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw Error(fmt::format("{}: no coverage data", (dir / "data").string()));
+  CoverageSummary s;
+  s.files = files.size();
+  std::map<std::string, std::uint64_t> points;
+  for (const auto& f : files) read_points(f, points);
+  for (const auto& [key, count] : points) {
+    const std::string page = field(key, "page");
+    if (page.rfind("v_toggle", 0) == 0) {
+      ++s.toggle_points;
+      s.toggle_hit += count > 0 ? 1 : 0;
+    } else if (page.rfind("v_line", 0) == 0 || page.rfind("v_branch", 0) == 0) {
+      ++s.line_points;
+      s.line_hit += count > 0 ? 1 : 0;
+    }
+  }
+  const std::string info = (dir / "coverage.info").string();
+  std::vector<std::string> merge{"verilator_coverage", "--write-info", info};
+  merge.insert(merge.end(), files.begin(), files.end());
+  if (const ProcessResult r = run_process(merge); r.exit_code != 0) {
+    throw Error(fmt::format("verilator_coverage failed: {}", first_lines(r.out)));
+  }
+  const fs::path html = dir / "html";
+  fs::remove_all(html, ec);
+  if (const ProcessResult r =
+          run_process({"genhtml", "--quiet", "--output-directory", html.string(), info});
+      r.exit_code != 0) {
+    throw Error(
+        fmt::format("genhtml failed (scripts/setup.sh installs lcov): {}", first_lines(r.out)));
+  }
+  return s;
+}
+
+}  // namespace phongsim

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# RTL code coverage (`cosim --coverage DIR`, docs/verification.md):
+#   tests/coverage_test.sh BUILD_DIR PIPELINE
+# Two co-simulations of the pipeline's default configuration into one DIR: the first writes
+# DIR/coverage.info and DIR/html with line and toggle percentages in (0, 100] in its JSON; the
+# second (other seed, random stalls) merges with the first (more data files, no fewer points hit).
+# A run of a single vector into a DIR of its own reaches fewer toggles than the two together: the
+# percentages measure the vectors.
+set -uo pipefail
+phongsim="$1/phongsim"
+p=$2
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/phongsim-coverage-test.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "coverage_test $p: $*"; exit 1; }
+"$phongsim" cosim "$p" --coverage "$tmp/cov" --vectors 1000 --json "$tmp/a.json" >"$tmp/out" 2>&1 ||
+  fail "first run: $(cat "$tmp/out")"
+cat "$tmp/out"
+grep -q "^coverage (.* data files\? in $tmp/cov/data): lines .* %" "$tmp/out" || fail "no coverage line"
+[ -s "$tmp/cov/coverage.info" ] && [ -s "$tmp/cov/html/index.html" ] || fail "no coverage.info or html"
+"$phongsim" cosim "$p" --coverage "$tmp/cov" --vectors 1000 --seed 2 --backpressure random:0.5 \
+  --json "$tmp/b.json" >"$tmp/out" 2>&1 || fail "second run: $(cat "$tmp/out")"
+cat "$tmp/out"
+"$phongsim" cosim "$p" --coverage "$tmp/one" --vector-index 0 --json "$tmp/c.json" >"$tmp/out" 2>&1 ||
+  fail "one vector: $(cat "$tmp/out")"
+cat "$tmp/out"
+python3 - "$tmp" <<'EOT' || fail "JSON"
+import json, sys
+a, b, c = (json.load(open(f"{sys.argv[1]}/{n}.json"))["coverage"] for n in "abc")
+for x in (a, b, c):
+    assert 0 < x["line_percent"] <= 100 and 0 < x["toggle_percent"] <= 100, x
+    assert x["lines"]["total"] > 0 and x["toggles"]["total"] > 0 and x["coverpoints"] is None, x
+assert b["data_files"] > a["data_files"] and b["lines"]["total"] == a["lines"]["total"], (a, b)
+assert b["lines"]["hit"] >= a["lines"]["hit"] and b["toggles"]["hit"] >= a["toggles"]["hit"], (a, b)
+assert c["toggles"]["hit"] < b["toggles"]["hit"], (c, b)
+print("lines", a["line_percent"], b["line_percent"], c["line_percent"],
+      "toggles", a["toggle_percent"], b["toggle_percent"], c["toggle_percent"])
+EOT
