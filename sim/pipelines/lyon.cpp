@@ -616,11 +616,7 @@ const PipelineInfo& lyon_pipeline() {
       .default_vectors = 1000000,
       .latency = latency,
       .one_per_clock = true,
-      .cycles =
-          [](const Config& cfg, std::span<const std::int64_t>, std::span<const std::int64_t>,
-             std::span<const std::uint32_t> counts, std::vector<FrameCycles>* per_vector) {
-            return one_per_clock_cycles(latency(cfg), counts.size(), per_vector);
-          },
+      .cycles = one_per_clock<latency>,
       .stages = stages,
       .native = native,
       .contract =

@@ -114,6 +114,14 @@ struct PipelineInfo {
   std::vector<Mutant> mutants;
 };
 
+// PipelineInfo::cycles of a pipeline whose RTL takes one vector per clock, `Latency` cycles deep.
+template <int (*Latency)(const Config&)>
+FrameCycles one_per_clock(const Config& cfg, std::span<const std::int64_t>,
+                          std::span<const std::int64_t>, std::span<const std::uint32_t> counts,
+                          std::vector<FrameCycles>* per_vector) {
+  return one_per_clock_cycles(Latency(cfg), counts.size(), per_vector);
+}
+
 [[nodiscard]] std::span<const PipelineInfo> pipelines();
 
 // Throws Error listing the known pipelines when `name` is not one of them.
