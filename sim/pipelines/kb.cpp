@@ -453,9 +453,8 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
   KbModel model(f);
   const double top = fx::to_real(f.out.max_raw(), f.out);
   const double lsb = std::ldexp(1.0, -f.out.frac_bits);
-  ModelError e;
-  double sum = 0;
-  for (std::uint64_t n = 0; e.samples < samples && n < 100000; ++n) {
+  ErrorTally tally;
+  for (std::uint64_t n = 0; tally.samples() < samples && n < 100000; ++n) {
     Rng rng(seed, kStimulusStream, n);
     const KbSpan span = kb_random_span(rng, so, 0);
     std::vector<std::vector<std::int64_t>> program;
@@ -470,14 +469,10 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
     for (std::size_t i = 0; i < out.size() / 2; ++i) {
       const double d = std::abs(fx::to_real(out[2 * i], f.out) -
                                 std::clamp(kb_exact(span, static_cast<int>(i)), 0.0, top));
-      e.max_abs = std::max(e.max_abs, d);
-      e.max_lsb = std::max(e.max_lsb, d / lsb);
-      sum += d / lsb;
-      ++e.samples;
+      tally.add(d, lsb);
     }
   }
-  e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
-  return e;
+  return tally.result();
 }
 
 void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed,

@@ -127,8 +127,7 @@ ModelError lirp_contract_error(const Config& cfg, int clause, std::uint64_t samp
   };
   std::vector<std::int64_t> v(model.inputs().size());
   std::vector<std::int64_t> result;
-  ModelError e;
-  double sum = 0;
+  ErrorTally tally;
   std::uint64_t vectors = 0;
   for (std::uint64_t i = 0; vectors < samples && i < 50 * samples; ++i) {
     Rng rng(seed, kStimulusStream, i);
@@ -146,14 +145,10 @@ ModelError lirp_contract_error(const Config& cfg, int clause, std::uint64_t samp
     for (int c = 0; c < 3; ++c) {
       const double exact = std::clamp(lirp::lirp(p[c], p[3 + c], a), lo, hi);
       const double d = std::abs(fx::to_real(result[static_cast<std::size_t>(c)], f.out) - exact);
-      e.max_abs = std::max(e.max_abs, d);
-      e.max_lsb = std::max(e.max_lsb, d / lsb);
-      sum += d / lsb;
-      ++e.samples;
+      tally.add(d, lsb);
     }
   }
-  e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
-  return e;
+  return tally.result();
 }
 
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
@@ -204,7 +199,7 @@ void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64
 ModelError lirp_float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const LirpFormats f = LirpFormats::from_config(cfg);
   LirpModel model(f);
-  ModelError e;
+  ErrorTally tally;
   const double lsb = std::ldexp(1.0, -f.out.frac_bits);
   const double lo = fx::to_real(f.out.min_raw(), f.out);
   const double hi = fx::to_real(f.out.max_raw(), f.out);
@@ -213,7 +208,6 @@ ModelError lirp_float_error(const Config& cfg, std::uint64_t samples, std::uint6
   };
   std::vector<std::int64_t> v(model.inputs().size());
   std::vector<std::int64_t> result;
-  double sum = 0;
   for (std::uint64_t i = 0; i < samples; ++i) {
     Rng rng(seed, kStimulusStream, i);
     double p[6];
@@ -228,14 +222,10 @@ ModelError lirp_float_error(const Config& cfg, std::uint64_t samples, std::uint6
     for (int c = 0; c < 3; ++c) {
       const double exact = std::clamp(lirp::lirp(p[c], p[3 + c], a), lo, hi);
       const double d = std::abs(fx::to_real(result[static_cast<std::size_t>(c)], f.out) - exact);
-      e.max_abs = std::max(e.max_abs, d);
-      e.max_lsb = std::max(e.max_lsb, d / lsb);
-      sum += d / lsb;
-      ++e.samples;
+      tally.add(d, lsb);
     }
   }
-  e.mean_lsb = e.samples == 0 ? 0 : sum / static_cast<double>(e.samples);
-  return e;
+  return tally.result();
 }
 
 const PipelineInfo& lirp_pipeline() {

@@ -4,6 +4,7 @@
 // short list.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -31,6 +32,28 @@ struct ModelError {
   double mean_lsb = 0;
   double max_abs = 0;
   std::uint64_t samples = 0;  // outputs compared
+};
+
+// A ModelError built up one compared output at a time.
+class ErrorTally {
+ public:
+  // One output `abs_error` off, in a format whose LSB is `lsb`.
+  void add(double abs_error, double lsb) {
+    e_.max_abs = std::max(e_.max_abs, abs_error);
+    e_.max_lsb = std::max(e_.max_lsb, abs_error / lsb);
+    sum_lsb_ += abs_error / lsb;
+    ++e_.samples;
+  }
+  [[nodiscard]] std::uint64_t samples() const { return e_.samples; }
+  [[nodiscard]] ModelError result() const {
+    ModelError e = e_;
+    e.mean_lsb = e.samples == 0 ? 0 : sum_lsb_ / static_cast<double>(e.samples);
+    return e;
+  }
+
+ private:
+  ModelError e_;
+  double sum_lsb_ = 0;
 };
 
 // A deliberate RTL bug that co-simulation must catch: `from` (which must occur exactly once in

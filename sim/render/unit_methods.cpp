@@ -114,7 +114,7 @@ UnitImage pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
     const Fragment& fr = f.fragments[i];
     img.at(fr.x, fr.y) = to_rgb8(combine(fr, f.lighting.lights, a));
   }
-  return {std::move(img), {unit.frame(), f.fragments.size()}};
+  return {std::move(img), {unit.frame(), f.fragments.size(), {}}};
 }
 
 UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgress& progress,
@@ -243,7 +243,7 @@ UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
     }
     at += 2 * 3 * length;
   }
-  return {std::move(img), {unit.frame(), expected / 3}};  // a span pixel per channel
+  return {std::move(img), {unit.frame(), expected / 3, {}}};  // a span pixel per channel
 }
 
 }  // namespace phongsim::shading
