@@ -31,6 +31,20 @@ std::vector<Item> Items() {
 
 class PipelineEntry : public ::testing::TestWithParam<Item> {};
 
+// An entry's configuration, model, stimulus and built-in RTL plugin (from the build's cache).
+struct Built {
+  explicit Built(const Item& it)
+      : cfg(Config::load(it.config)),
+        model(make_model(*it.pipeline, cfg)),
+        library(RtlLibrary::open(
+            locate_rtl(rtl_design(*it.pipeline, cfg), *model, RtlBuild::never, nullptr))),
+        stimulus(it.pipeline->make_stimulus(*model, cfg)) {}
+  Config cfg;
+  std::unique_ptr<PipelineModel> model;
+  std::shared_ptr<RtlLibrary> library;
+  Stimulus stimulus;
+};
+
 TEST_P(PipelineEntry, PortsBindEveryFieldOnce) {
   const Item& it = GetParam();
   const Config cfg = Config::load(it.config);
@@ -50,12 +64,11 @@ TEST_P(PipelineEntry, PortsBindEveryFieldOnce) {
 
 TEST_P(PipelineEntry, MeasuredLatencyAndRateAreTheEntrys) {
   const Item& it = GetParam();
-  const Config cfg = Config::load(it.config);
-  const auto model = make_model(*it.pipeline, cfg);
-  const RtlPlugin plugin =
-      locate_rtl(rtl_design(*it.pipeline, cfg), *model, RtlBuild::never, nullptr);
-  const auto library = RtlLibrary::open(plugin);
-  const Stimulus stimulus = it.pipeline->make_stimulus(*model, cfg);
+  const Built b(it);
+  const Config& cfg = b.cfg;
+  const auto& model = b.model;
+  const auto& library = b.library;
+  const Stimulus& stimulus = b.stimulus;
   CosimOptions o;
   o.directed = false;
   o.random_vectors = 0;
@@ -79,12 +92,11 @@ TEST_P(PipelineEntry, MeasuredLatencyAndRateAreTheEntrys) {
 // where a group of vectors starts, so that kb's spans are whole), for two seeds.
 TEST_P(PipelineEntry, CycleModelCountsTheRtlsCycles) {
   const Item& it = GetParam();
-  const Config cfg = Config::load(it.config);
-  const auto model = make_model(*it.pipeline, cfg);
-  const RtlPlugin plugin =
-      locate_rtl(rtl_design(*it.pipeline, cfg), *model, RtlBuild::never, nullptr);
-  const auto library = RtlLibrary::open(plugin);
-  const Stimulus stimulus = it.pipeline->make_stimulus(*model, cfg);
+  const Built b(it);
+  const Config& cfg = b.cfg;
+  const auto& model = b.model;
+  const auto& library = b.library;
+  const Stimulus& stimulus = b.stimulus;
   const std::size_t n_in = model->inputs().size(), n_out = model->outputs().size();
   // Stateful pipelines also get arbitrary words, not only what a setup writes (kb: events on a
   // span's last pixel, events left over after it, a stream ending inside a span).
