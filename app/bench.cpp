@@ -210,6 +210,7 @@ int run(BenchCli c) {
   j["config"] = l.cfg.name();
   j["config_path"] = l.cfg.origin();
   j["vectors"] = vectors;
+  j["stimulus"] = {{"vectors_per_s", json_number(r.stimulus.vectors_per_s)}};
   j["model"] = rate_json(r.model);
   j["native"] = r.native ? rate_json(*r.native) : nlohmann::ordered_json(nullptr);
   j["rtl"] = rate_json(r.rtl);
@@ -234,6 +235,7 @@ int run(BenchCli c) {
       {"model_rtl", ratio(r.model.outputs_per_s, r.rtl.outputs_per_s)},
       {"rtl_bare_rtl", ratio(r.rtl.cycles_per_s, r.bare_rtl.cycles_per_s)},
       {"cosim_rtl", ratio(r.cosim.outputs_per_s, r.rtl.outputs_per_s)},
+      {"cosim_ceiling_rtl", json_number(r.cosim_ceiling())},
       {"jobs_cosim", r.jobs > 1 ? ratio(r.cosim_jobs.outputs_per_s, r.cosim.outputs_per_s)
                                 : nlohmann::ordered_json(nullptr)},
       {"verilator_icarus", r.icarus ? ratio(r.rtl.cycles_per_s, r.icarus->cycles_per_s)

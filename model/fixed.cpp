@@ -98,9 +98,21 @@ Fixed from_raw(std::int64_t raw, Format fmt) {
   return {raw, fmt};
 }
 
+namespace {
+
+// 2^k as a double; a multiplication by it is exactly ldexp (both are the correctly rounded
+// product), without ldexp's library call, which dominated the stimulus' quantization.
+double pow2(int k) {
+  if (k >= 0 && k < 64) return static_cast<double>(std::uint64_t{1} << k);
+  if (k < 0 && k > -64) return 1 / static_cast<double>(std::uint64_t{1} << -k);  // exact
+  return std::ldexp(1.0, k);
+}
+
+}  // namespace
+
 double round_scaled(double x, int frac_bits, Round round) {
   if (!std::isfinite(x)) throw Error(fmt::format("cannot quantize {}", x));
-  const double s = std::ldexp(x, frac_bits);  // exact (power-of-two scaling)
+  const double s = x * pow2(frac_bits);  // exact (power-of-two scaling)
   const double f = std::floor(s);
   const double rest = s - f;  // exact: 0 <= rest < 1
   switch (round) {
@@ -118,7 +130,7 @@ double round_scaled(double x, int frac_bits, Round round) {
 
 bool raw_in_range(double scaled, Format fmt) {
   // Bounds as exact doubles: max_raw() + 1 is a power of two, max_raw() itself may not be.
-  const double above_max = std::ldexp(1.0, fmt.is_signed ? fmt.width() - 1 : fmt.width());
+  const double above_max = pow2(fmt.is_signed ? fmt.width() - 1 : fmt.width());
   return scaled >= static_cast<double>(fmt.min_raw()) && scaled < above_max;
 }
 
@@ -136,7 +148,7 @@ std::int64_t quantize(double x, Format fmt, Round round, Overflow overflow) {
 }
 
 double to_real(std::int64_t raw, Format fmt) {
-  return std::ldexp(static_cast<double>(raw), -fmt.frac_bits);
+  return static_cast<double>(raw) * pow2(-fmt.frac_bits);
 }
 
 Round parse_round(std::string_view name) {

@@ -36,6 +36,7 @@ class Requant {
       lo_ = to.min_raw();
       hi_ = to.max_raw();
     } else {  // wrap: the low width bits, read in `to`'s signedness (fx::from_bits)
+      wrap_ = true;
       mask_ = static_cast<std::int64_t>((std::uint64_t{1} << to.width()) - 1);
       sign_ = to.is_signed ? std::int64_t{1} << (to.width() - 1) : 0;
     }
@@ -49,7 +50,7 @@ class Requant {
   [[nodiscard]] std::int64_t operator()(std::int64_t v) const {
     v = static_cast<std::int64_t>(static_cast<std::uint64_t>(v) << lshift_);
     v = (v + bias_ + ((v >> rshift_) & odd_)) >> rshift_;  // >>: arithmetic, floor
-    v = std::min(std::max(v, lo_), hi_);
+    if (!wrap_) return std::min(std::max(v, lo_), hi_);
     return ((v & mask_) ^ sign_) - sign_;
   }
 
@@ -62,6 +63,7 @@ class Requant {
   std::int64_t hi_ = std::numeric_limits<std::int64_t>::max();
   std::int64_t mask_ = -1;
   std::int64_t sign_ = 0;
+  bool wrap_ = false;
   bool fits_ = true;
 };
 

@@ -98,9 +98,11 @@ assert r["pipeline"] == sys.argv[2] and r["config"] == "default" and r["vectors"
 for part in ("model", "native", "rtl", "bare_rtl", "cosim", "cosim_jobs", "icarus"):
     assert r[part]["vectors_per_s"] > 0 and r[part]["outputs_per_s"] > 0, (part, r)
 assert 1 <= r["icarus"]["vectors"] <= 5000 and r["icarus"]["cycles_per_s"] > 0, r
+assert r["stimulus"]["vectors_per_s"] > 0, r
 for ratio in ("model_native", "model_rtl", "rtl_bare_rtl", "cosim_rtl", "jobs_cosim",
               "verilator_icarus"):
     assert r["ratios"][ratio] > 0, (ratio, r)
+assert 0 < r["ratios"]["cosim_ceiling_rtl"] < 1, r
 EOT
     done
     ;;
@@ -277,6 +279,10 @@ EOT
     run >"$tmp/rebuilt" 2>&1 || fail "rebuild: $(cat "$tmp/rebuilt")"
     grep -q "Verilating lirp (changed since the last build: fx_resize.sv" "$tmp/rebuilt" ||
       fail "no rebuild notice: $(cat "$tmp/rebuilt")"
+    # Extra Verilator flags are part of the key too, and the refusal says so.
+    PHONGSIM_VERILATOR_FLAGS="--output-split 500" expect_error \
+      'not built for its current content.*PHONGSIM_VERILATOR_FLAGS changed: now "--output-split 500"' \
+      run --no-build
     # A plugin file given by hand is refused once a file it was built from changed.
     plugin=$("$phongsim" build-rtl lirp --rtl "$tmp/rtl/common" "$tmp/rtl/lirp" | sed -n 's/.*: \(.*plugin.so\)$/\1/p')
     [ -s "$plugin" ] || fail "build-rtl printed no plugin path"

@@ -290,6 +290,28 @@ TEST(RealTest, QuantizeWideFormatsMatchesReference) {
   }
 }
 
+// The power-of-two scaling in round_scaled and to_real is a multiplication, not ldexp: the same
+// double for every exponent, subnormal and overflowing results included.
+TEST(RealTest, ScalingIsLdexp) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-1074, 1023);
+  for (int n = 0; n < 20000; ++n) {
+    const double x = std::ldexp(mantissa(rng), exponent(rng));
+    for (const int k : {-70, -64, -63, -40, -1, 0, 1, 12, 52, 63, 64, 70}) {
+      ASSERT_EQ(fx::round_scaled(x, k, Round::truncate), std::floor(std::ldexp(x, k)))
+          << Real(x) << " * 2^" << k;
+    }
+  }
+  for (const Format f : {S(1, 10), U(0, 63), S(62, 0), S(31, 31)}) {
+    for (const std::int64_t raw : {f.min_raw(), std::int64_t{-1}, std::int64_t{1}, f.max_raw()}) {
+      if (raw < f.min_raw()) continue;
+      EXPECT_EQ(fx::to_real(raw, f), std::ldexp(static_cast<double>(raw), -f.frac_bits))
+          << raw << " in " << Name(f);
+    }
+  }
+}
+
 TEST(RealTest, NonFiniteThrows) {
   for (const double x :
        {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),

@@ -69,8 +69,15 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   const Stimulus& stimulus = subject.stimulus;
   const std::size_t n_in = model.inputs().size();
   std::vector<std::int64_t> inputs(vectors * n_in);
-  for (std::uint64_t i = 0; i < vectors; ++i) {
-    stimulus.vector(1, stimulus.directed_count() + i, std::span(inputs).subspan(i * n_in, n_in));
+  {
+    InputContract contract = subject.contract;  // a fresh checker, from reset
+    const auto start = std::chrono::steady_clock::now();
+    for (std::uint64_t i = 0; i < vectors; ++i) {
+      const auto v = std::span(inputs).subspan(i * n_in, n_in);
+      stimulus.vector(1, stimulus.directed_count() + i, v);
+      if (contract.defined()) (void)contract.check(v);
+    }
+    r.stimulus = rate(vectors, 0, seconds_since(start));
   }
   std::vector<std::int64_t> out;
   out.reserve(1 << 20);
@@ -165,12 +172,18 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   return r;
 }
 
+double BenchReport::cosim_ceiling() const {
+  const double rtl_s = 1 / rtl.vectors_per_s;
+  return rtl_s / (rtl_s + 1 / stimulus.vectors_per_s + 1 / model.vectors_per_s);
+}
+
 std::string BenchReport::table() const {
   const auto row = [](std::string_view what, const BenchRate& b, std::string_view extra = "") {
     return fmt::format("  {:<22} {:>12.0f} {:>12.0f}{}\n", what, b.vectors_per_s, b.outputs_per_s,
                        extra);
   };
   std::string s = fmt::format("  {:<22} {:>12} {:>12}\n", "per second", "vectors", "outputs");
+  s += row("stimulus + contract", stimulus);
   s += row("model", model);
   if (native) s += row("native kernel", *native);
   s += row("Verilated RTL", rtl, fmt::format("   ({:.0f} cycles/s)", rtl.cycles_per_s));
@@ -189,6 +202,7 @@ std::string BenchReport::table() const {
   s += ratio("model / RTL", model.outputs_per_s / rtl.outputs_per_s);
   s += ratio("RTL / bare loop", rtl.cycles_per_s / bare_rtl.cycles_per_s);
   s += ratio("co-sim / RTL", cosim.outputs_per_s / rtl.outputs_per_s);
+  s += ratio("  ceiling (one core)", cosim_ceiling());
   if (icarus) s += ratio("Verilator / Icarus", rtl.cycles_per_s / icarus->cycles_per_s);
   if (jobs > 1) {
     s +=

@@ -33,6 +33,7 @@ using NativeKernel =
 
 struct BenchReport {
   std::uint64_t vectors = 0;
+  BenchRate stimulus;               // Stimulus::vector and InputContract::check, vectors only
   BenchRate model;                  // PipelineModel::eval_batch
   std::optional<BenchRate> native;  // when a native kernel applies to the configuration
   BenchRate rtl;                    // the Verilated RTL through the harness, outputs discarded
@@ -45,6 +46,12 @@ struct BenchReport {
   // (about kIcarusCycles cycles' worth); absent when not measured.
   std::optional<BenchRate> icarus;
   std::uint64_t icarus_vectors = 0;
+
+  // The co-simulation / RTL ratio a co-simulation on one core would reach if its only costs
+  // besides the RTL were the stimulus and the model, each at its own measured rate (per vector:
+  // 1/rtl / (1/rtl + 1/stimulus + 1/model)): what the co-simulation's bookkeeping is measured
+  // against, and its floor when the goal is above it.
+  [[nodiscard]] double cosim_ceiling() const;
 
   [[nodiscard]] std::string table() const;  // ratios are of outputs per second (RTL: cycles)
 };

@@ -33,12 +33,25 @@ const std::vector<std::string> kVerilatorFlagsXRandom = {
 // The coverage variant: Verilator's line (and branch) and toggle coverage points.
 const std::vector<std::string> kVerilatorCoverageFlags = {"--coverage-line", "--coverage-toggle"};
 
+// $PHONGSIM_VERILATOR_FLAGS: extra Verilator arguments, split at white space, appended to every
+// plugin's (so part of its key), e.g. "--threads 2" or "-CFLAGS -march=native"; how the defaults
+// were chosen is in docs/performance.md.
+std::vector<std::string> extra_verilator_flags() {
+  std::vector<std::string> flags;
+  const char* env = std::getenv("PHONGSIM_VERILATOR_FLAGS");
+  std::istringstream words(env ? env : "");
+  for (std::string w; words >> w;) flags.push_back(w);
+  return flags;
+}
+
 std::vector<std::string> verilator_flags(const RtlDesign& d) {
   std::vector<std::string> flags =
       d.x_init == XInit::random ? kVerilatorFlagsXRandom : kVerilatorFlags;
   if (d.coverage) {
     flags.insert(flags.end(), kVerilatorCoverageFlags.begin(), kVerilatorCoverageFlags.end());
   }
+  const std::vector<std::string> extra = extra_verilator_flags();
+  flags.insert(flags.end(), extra.begin(), extra.end());
   return flags;
 }
 
@@ -203,9 +216,13 @@ Keyed key_of(const RtlDesign& d) {
   // The key covers the adapter too; its text embeds the key, so hash what precedes it.
   h.add(adapter_source(d, ""));
   k.key = h.hex();
-  k.info = fmt::format("key {}\nname {}\ntop {}\ngflags {}\n{}{}{}{}", k.key, d.name, d.top, gflags,
-                       d.x_init == XInit::random ? "x_init random\n" : "",
-                       d.coverage ? "coverage line toggle\n" : "", ports_text(d), files);
+  std::string extra;
+  for (const auto& f : extra_verilator_flags()) extra += (extra.empty() ? "" : " ") + f;
+  k.info =
+      fmt::format("key {}\nname {}\ntop {}\ngflags {}\n{}{}{}{}{}", k.key, d.name, d.top, gflags,
+                  d.x_init == XInit::random ? "x_init random\n" : "",
+                  d.coverage ? "coverage line toggle\n" : "",
+                  extra.empty() ? "" : "verilator_extra " + extra + "\n", ports_text(d), files);
   k.adapter = adapter_source(d, k.info);
   return k;
 }
@@ -262,12 +279,29 @@ fs::path plugin_dir(const RtlDesign& d, const std::string& key) {
   return rtl_cache_dir() / fmt::format("{}-{}", d.name, key);
 }
 
-// Names the files that differ from the newest cached build of the same top and parameters, so
-// a rebuild says why it happens.
+// A file of a build's info as "<content hash> <file name>": the same file in another copy of the
+// tree (another absolute path) has not changed.
+std::set<std::string> info_files(const std::string& info) {
+  std::set<std::string> files;
+  std::istringstream in(info);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("file ", 0) != 0) continue;
+    const auto path_at = line.find(' ', 5);
+    files.insert(line.substr(5, path_at - 5) + " " +
+                 fs::path(line.substr(path_at + 1)).filename().string());
+  }
+  return files;
+}
+
+// Says why a rebuild happens: the Verilator flags, when a cached build of the same top,
+// parameters and files has other $PHONGSIM_VERILATOR_FLAGS; else the files that differ from the
+// newest cached build of the same top and parameters.
 std::string changed_since_last_build(const RtlDesign& d, const Keyed& k) {
   std::error_code ec;
   fs::file_time_type newest{};
   std::string previous;
+  const std::set<std::string> now = info_files(k.info);
+  const std::string extra = info_field(k.info, "verilator_extra");
   for (const auto& e : fs::directory_iterator(rtl_cache_dir(), ec)) {
     const fs::path info = e.path() / "info.txt";
     if (e.path().filename().string().rfind(d.name + "-", 0) != 0 || !fs::exists(info)) continue;
@@ -277,34 +311,27 @@ std::string changed_since_last_build(const RtlDesign& d, const Keyed& k) {
         info_field(text, "x_init") != info_field(k.info, "x_init") ||
         info_field(text, "coverage") != info_field(k.info, "coverage"))
       continue;
+    if (info_files(text) == now && info_field(text, "verilator_extra") != extra) {
+      return fmt::format("PHONGSIM_VERILATOR_FLAGS changed: now \"{}\"", extra);
+    }
     if (const auto t = fs::last_write_time(info, ec); previous.empty() || t > newest) {
       newest = t;
       previous = text;
     }
   }
   if (previous.empty()) return "first build of these parameters";
-  std::set<std::string> before;
-  std::istringstream in(previous);
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("file ", 0) == 0) before.insert(line);
-  }
-  std::vector<std::string> changed;
-  std::istringstream now(k.info);
-  for (std::string line; std::getline(now, line);) {
-    if (line.rfind("file ", 0) == 0 && !before.contains(line)) {
-      changed.push_back(fs::path(line.substr(line.find(' ', 5) + 1)).filename().string());
-    }
-  }
-  if (changed.empty()) return "phongsim's plugin code or the tools changed";
+  const std::set<std::string> before = info_files(previous);
   std::string list;
-  for (const auto& c : changed) list += (list.empty() ? "" : ", ") + c;
+  for (const std::string& f : now) {
+    if (!before.contains(f)) list += (list.empty() ? "" : ", ") + f.substr(f.find(' ') + 1);
+  }
+  if (list.empty()) return "phongsim's plugin code or the tools changed";
   return "changed since the last build: " + list;
 }
 
 // One generated CMake project that builds every missing plugin (and the Verilator runtime they
 // share, if it is missing too) in parallel.
-void build_missing(const std::vector<const RtlDesign*>& designs, const std::vector<Keyed>& keys,
-                   std::FILE* log) {
+void build_missing(const std::vector<const RtlDesign*>& designs, const std::vector<Keyed>& keys) {
   const fs::path cache = rtl_cache_dir();
   try {
     fs::create_directories(cache);
@@ -540,7 +567,7 @@ std::vector<RtlPlugin> build_rtl(std::span<const RtlDesign> designs,
     missing.push_back(&designs[i]);
     missing_keys.push_back(built);
   }
-  if (!missing.empty()) build_missing(missing, missing_keys, log);
+  if (!missing.empty()) build_missing(missing, missing_keys);
   return plugins;
 }
 
