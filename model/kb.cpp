@@ -15,7 +15,7 @@ KbFormats KbFormats::from_config(const Config& cfg) {
 }
 
 KbPlan::KbPlan(const KbFormats& f)
-    : wrap_(fx::add_format(f.acc, f.acc), f.acc, fx::Round::truncate, fx::Overflow::wrap),
+    : wrap_shift_(64 - f.acc.width()),
       out_(f.acc, f.out, f.out_round, fx::Overflow::saturate),
       one_(f.acc.int_bits >= 1 ? std::int64_t{1} << f.acc.frac_bits : f.acc.max_raw()) {}
 

@@ -32,14 +32,19 @@ class KbPlan {
   KbPlan() = default;
   explicit KbPlan(const KbFormats& f);
 
-  [[nodiscard]] bool usable() const { return out_.fits_int64() && wrap_.fits_int64(); }
-  [[nodiscard]] std::int64_t wrap_add(std::int64_t a, std::int64_t b) const { return wrap_(a + b); }
+  [[nodiscard]] bool usable() const { return out_.fits_int64(); }
+  // a + b wrapped to acc: the sum has acc's binary point, so wrapping keeps its low width bits,
+  // sign-extended (two shifts; both operands are in acc's range, so the sum fits int64_t).
+  [[nodiscard]] std::int64_t wrap_add(std::int64_t a, std::int64_t b) const {
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(a + b) << wrap_shift_) >>
+           wrap_shift_;
+  }
   [[nodiscard]] std::int64_t output(std::int64_t f) const {
     return out_(std::min(std::max(f, std::int64_t{0}), one_));
   }
 
  private:
-  fx::Requant wrap_;      // f + d1 (add_format(acc, acc)) back to acc, wrapping
+  int wrap_shift_ = 0;    // 64 - acc's width
   fx::Requant out_;       // clamped accumulator to the output format
   std::int64_t one_ = 0;  // clamp01's upper bound (acc has no integer bit: never reached)
 };
