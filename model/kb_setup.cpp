@@ -52,6 +52,9 @@ std::vector<std::vector<std::int64_t>> kb_program(const KbSpan& span, KbPolicy p
   std::vector<double> exact(static_cast<std::size_t>(length) + 2);
   for (int i = 0; i < length + 2; ++i) exact[i] = kb_exact(span, i);
   const auto second = [&exact](int i) { return exact[i + 2] - 2 * exact[i + 1] + exact[i]; };
+  // Each pixel's sections once (the loops below compare each pixel's with its neighbours').
+  std::vector<std::vector<int>> sec(static_cast<std::size_t>(length) + 2);
+  for (int i = 0; i < length + 2; ++i) sec[i] = sections(span, i);
 
   std::vector<std::vector<std::int64_t>> events;
   std::int64_t f0 = q(exact[0]);
@@ -64,9 +67,7 @@ std::vector<std::vector<std::int64_t>> kb_program(const KbSpan& span, KbPolicy p
     d2 = q(second(0));
     for (int i = 1; i + 1 < length; ++i) {
       // The second difference at i spans pixels i..i+2: it changes when their sections do.
-      if (sections(span, i) != sections(span, i - 1) ||
-          sections(span, i + 1) != sections(span, i) ||
-          sections(span, i + 2) != sections(span, i + 1)) {
+      if (sec[i] != sec[i - 1] || sec[i + 1] != sec[i] || sec[i + 2] != sec[i + 1]) {
         events.push_back({i, 0, 0, q(exact[i + 1] - exact[i]), q(second(i)), 1});
       }
     }
@@ -91,7 +92,7 @@ std::vector<std::vector<std::int64_t>> kb_program(const KbSpan& span, KbPolicy p
     d1 = q(first_d1);
     d2 = q(pure_d2(0));
     for (int i = 0; i + 1 < length; ++i) {
-      if (sections(span, i + 1) != sections(span, i)) {
+      if (sec[i + 1] != sec[i]) {
         events.push_back({i, 0, 0, 0, q(pure_d2(i + 1)), 0});
       }
     }

@@ -69,7 +69,9 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   const Stimulus& stimulus = subject.stimulus;
   const std::size_t n_in = model.inputs().size();
   std::vector<std::int64_t> inputs(vectors * n_in);
-  {
+  // Made twice, the second time timed: one-time set-up (kb's (a, b) fits, cached per exponent)
+  // is then done, as it is for the co-simulation measured below.
+  for (int pass = 0; pass < 2; ++pass) {
     InputContract contract = subject.contract;  // a fresh checker, from reset
     const auto start = std::chrono::steady_clock::now();
     for (std::uint64_t i = 0; i < vectors; ++i) {
