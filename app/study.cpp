@@ -71,7 +71,10 @@ void add_study(CLI::App& app, Action& action) {
       "study",
       "Measure the seeds' claims over many random scenes: the fraction of scenes in which each "
       "holds, with a 95 % interval (study.csv, study.md, study.png)");
-  add_count(*cmd, "--scenes", c->options.scenes, "random scenes (default 200)", 100000, 1);
+  // At most 500: every scene writes up to two scene files, all held as temporaries until the
+  // output set commits (base/temporaries.h: 1024 at once).
+  add_count(*cmd, "--scenes", c->options.scenes, "random scenes (default 200, at most 500)", 500,
+            1);
   add_count(*cmd, "--seed", c->options.seed, "seed of the scenes", UINT64_MAX);
   add_int(*cmd, "--size", c->options.size, "image width of each scene (default 160)", 16, 2048);
   add_count(*cmd, "--jobs", c->jobs, "worker threads (default 0: one per core)", 256);

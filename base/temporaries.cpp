@@ -25,7 +25,7 @@ namespace {
 // Fixed slots, so the handler touches no allocator: a slot is claimed (1), filled, then
 // published (2); the handler acts only on published slots.
 constexpr int kFree = 0, kClaimed = 1, kPublished = 2;
-constexpr int kPathSlots = 256;
+constexpr int kPathSlots = 1024;  // phongsim study: two scene files per scene
 constexpr int kChildSlots = 32;
 constexpr std::size_t kPathMax = 4096;
 
@@ -166,7 +166,7 @@ TempRegistration::TempRegistration(const fs::path& path) {
     throw Error(fmt::format("{}: the path is too long for a temporary", text));
   }
   slot_ = claim(g_paths, kPathSlots);
-  if (slot_ < 0) throw Error("too many temporary files at once (at most 256)");
+  if (slot_ < 0) throw Error("too many temporary files at once (at most 1024)");
   std::memcpy(g_paths[slot_].path, text.c_str(), text.size() + 1);
   g_paths[slot_].state.store(kPublished);
 }

@@ -23,7 +23,7 @@ void install_signal_cleanup();
 
 // While alive, `path` (a file, or a directory with everything in it) is removed if a signal ends
 // the process. Register before creating the path. Construction, move and destruction never
-// create or remove anything. Throws Error when more than 256 temporaries are registered at once.
+// create or remove anything. Throws Error when more than 1024 temporaries are registered at once.
 class TempRegistration {
  public:
   TempRegistration() = default;

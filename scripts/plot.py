@@ -276,7 +276,8 @@ def figure_study(args, plt):
     rows = read_csv(args.csv, lambda header: None)
     header, rows = rows[0], rows[1:]
     claims = [h[:-len("_diff")] for h in header if h.endswith("_diff")]
-    if not claims or header[:4] != ["scene", "mesh", "shininess", "lights"]:
+    if (not claims or header[:4] != ["scene", "mesh", "shininess", "lights"]
+            or any(c + "_holds" not in header for c in claims)):
         raise PlotError(f"{args.csv}:1: expected 'scene,mesh,shininess,lights,<claim>_holds,"
                         f"<claim>_diff,...', got '{','.join(header)}'")
     columns = 2
@@ -286,7 +287,9 @@ def figure_study(args, plt):
         ax = axes[k // columns][k % columns]
         col = header.index(claim + "_diff")
         values = [number(r[col], args.csv, n) for n, r in enumerate(rows, start=2) if r[col]]
-        holds = sum(1 for v in values if v > 0)
+        # The judgement itself, not the rounded difference (a difference below 5e-7 prints as 0).
+        hcol = header.index(claim + "_holds")
+        holds = sum(1 for r in rows if r[hcol] == "1")
         if values:
             ax.hist(values, bins=30, color="#4878a8")
         ax.axvline(0, color="black", linewidth=1)

@@ -304,7 +304,10 @@ t = j["tables"][0]
 assert t["columns"] == ["config", "p", "a", "out", "max_lsb", "mean_lsb"], t
 assert any(r["config"] == "default" and 1 < r["max_lsb"] < 2 for r in t["rows"]), t
 j = doc("analyze", "quad", "--samples", "5000")
-assert {t["title"][:5] for t in j["tables"]} == {"Drift", "Guard", "Outpu"}, j
+assert {t["title"][:5] for t in j["tables"]} == {"Drift", "Guard", "Outpu", "Outsi"}, j
+t = j["tables"][-1]
+assert any(r["config"] == "narrow_quad" and r["clause"] == "box within the guard bits"
+           and r["channels_off"] > 0 for r in t["rows"]), t
 j = doc("bench", "lirp", "--vectors", "1000")
 assert j["kind"] == "pipeline" and j["vectors"] == 1000 and j["rtl"]["cycles_per_s"] > 0, j
 j = doc("bench", "render", "--size", "6")
@@ -318,7 +321,11 @@ assert [r["region"] for r in m["regions"]] == j["regions"] == ["n=1", "n=4", "n=
 assert all(0 < r["colour_correctness"] <= 1 for r in m["regions"]), m
 assert len(j["files"]) == 7 and all(os.path.exists(f) for f in j["files"]), j
 j = doc("study", "--scenes", "3", "--size", "32", "--jobs", "2", "--out", os.path.join(tmp, "st"))
-assert j["scenes"] == 3 and len(j["files"]) == 6 and all(os.path.exists(f) for f in j["files"]), j
+# study.csv, study.md, study.png, three scene files and the glancing variant of scene 2, the one
+# closed mesh among them (scenes 0 and 1 are triangles).
+glancing = [f for f in j["files"] if f.endswith("-glancing.toml")]
+assert [os.path.basename(f) for f in glancing] == ["scene2-glancing.toml"], j
+assert j["scenes"] == 3 and len(j["files"]) == 7 and all(os.path.exists(f) for f in j["files"]), j
 for c in j["claims"]:
     assert 0 <= c["holds"] <= c["scenes"] <= 3 and c["ci_low"] <= c["holds_fraction"] <= c["ci_high"], c
 j = doc("synth", "--config", default)

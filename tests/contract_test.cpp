@@ -1,8 +1,8 @@
 // Input contracts (sim/cosim/contract.h, each pipeline's registry entry and docs/<pipeline>.md
 // "Input contract"): per pipeline, a vector known to be inside the contract is, and one vector per
 // clause that breaks exactly that clause is counted against it; the kb checker follows the
-// engine's parse of span programs; and outside Lyon's contract the unit gives the wrong answers
-// the contract warns of.
+// engine's parse of span programs; and outside Lyon's, Kuijk-Blake's and the quadratic
+// interpolator's contracts the units give the wrong answers the contracts warn of.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,6 +20,7 @@
 #include "ref/kb_float.h"
 #include "sim/pipelines/kb.h"
 #include "sim/pipelines/lyon.h"
+#include "sim/pipelines/quad.h"
 #include "sim/pipelines/registry.h"
 
 namespace phongsim {
@@ -214,6 +215,36 @@ TEST(Contract, KbOnePerClause) {
                2, {1, 1, 0, 1});
 }
 
+// `phongsim analyze kb`: the setup's programs are inside the contract and there within the
+// output's half LSB plus the drift bound the guard bits give (half an LSB); outside it the engine
+// wraps or mis-steps into values far from what the program was written for.
+TEST(Contract, KbAnalysisInsideAndOutside) {
+  const Loaded l("kb", "default");
+  const KbFormats& f = dynamic_cast<const KbModel&>(*l.model).formats();
+  const KbSetupOptions setup = KbSetupOptions::from_config(l.cfg);
+  const KbOutputError in = kb_output_error(f, setup, l.contract, 100, 1);
+  EXPECT_EQ(in.out_of_contract, 0U);
+  EXPECT_EQ(in.programs, 100U);
+  EXPECT_GT(in.pixels, 1000U);
+  EXPECT_LE(in.max, 1.0);
+  const auto rows = kb_out_of_contract(f, setup, l.contract, 500, 1);
+  ASSERT_EQ(rows.size(), l.contract.clauses().size() + 1);
+  EXPECT_FALSE(rows[2].note.empty());  // 24 guard bits cover every length n can express
+  EXPECT_EQ(rows[2].programs, 0U);
+  for (const std::size_t c : {0, 1, 3, 4}) EXPECT_GT(rows[c].programs, 0U) << rows[c].clause;
+  EXPECT_GT(rows[1].max_error, 0.5);  // a difference beyond the range wraps the accumulator
+  EXPECT_GT(rows[3].max_error, 0.1);  // a misplaced event leaves the span's curve
+  EXPECT_GT(rows[4].off, 0U);
+  // With 8 guard bits a span longer than 23 pixels drifts by more than an output LSB.
+  const Loaded narrow("kb", "narrow_reload");
+  const KbFormats& nf = dynamic_cast<const KbModel&>(*narrow.model).formats();
+  const auto nrows =
+      kb_out_of_contract(nf, KbSetupOptions::from_config(narrow.cfg), narrow.contract, 500, 1);
+  EXPECT_TRUE(nrows[2].note.empty());
+  EXPECT_GT(nrows[2].programs, 0U);
+  EXPECT_GT(nrows[2].max_error, 1.0 / 256);
+}
+
 // ---- quadratic interpolator ----
 
 TEST(Contract, QuadOnePerClause) {
@@ -251,6 +282,32 @@ TEST(Contract, QuadOnePerClause) {
   EXPECT_EQ(narrow.clause(box), 1);
   (void)nf;
   ExpectCounts(l, {in, kind, rem}, 1, {2, 0});
+}
+
+// `phongsim analyze quad`: inside the contract the narrow configuration stays within its
+// truncation's LSB plus the guard bits' half LSB of direct evaluation (its larger triangles,
+// outside, do not: QuadAnalysis.DriftBoundAndOutputError); outside, edge words the setup never
+// writes cover the wrong pixels, and colour samples too large for the accumulator wrap.
+TEST(Contract, QuadAnalysisInsideAndOutside) {
+  const Loaded narrow("quad", "narrow_quad");
+  const QuadFormats& nf = dynamic_cast<const QuadModel&>(*narrow.model).formats();
+  const QuadOutputError in = quad_output_error(nf, QuadMode::quadratic, 100, 1, &narrow.contract);
+  EXPECT_GT(in.out_of_contract, 0U);
+  EXPECT_GT(in.pixels, 100U);
+  EXPECT_LE(in.max, 1.5);  // it truncates: up to 1 LSB, plus the drift's half
+  const auto nrows = quad_out_of_contract(nf, QuadMode::quadratic, narrow.contract, 300, 1);
+  ASSERT_EQ(nrows.size(), narrow.contract.clauses().size() + 1);
+  EXPECT_GT(nrows[1].programs, 0U);
+  EXPECT_GT(nrows[1].max_error, 2.0 / 256);  // boxes beyond 10 x 10 drift past that
+
+  const Loaded l("quad", "default");
+  const QuadFormats& f = dynamic_cast<const QuadModel&>(*l.model).formats();
+  const auto rows = quad_out_of_contract(f, QuadMode::quadratic, l.contract, 300, 1);
+  EXPECT_GT(rows[0].programs, 0U);
+  EXPECT_GT(rows[0].extra + rows[0].missing, 0U);  // wrong coverage
+  EXPECT_FALSE(rows[1].note.empty());              // 24 guard bits: any box
+  EXPECT_GT(rows[2].programs, 0U);
+  EXPECT_GT(rows[2].max_error, 0.5);  // wrapped colours
 }
 
 // Co-simulation's random stimulus covers the whole format range on purpose: every pipeline's

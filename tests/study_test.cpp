@@ -4,7 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <regex>
+#include <string>
+
 #include "base/error.h"
+#include "base/vec3.h"
 
 namespace phongsim {
 namespace {
@@ -57,6 +64,51 @@ TEST(Study, ClaimsCountWhereTheyApplyAndHold) {
     EXPECT_EQ(r.claims[c].scenes, applies);
     EXPECT_EQ(r.claims[c].holds, holds);
   }
+}
+
+// The first "<key> = [x, y, z]" in a scene file.
+Vec3 VectorIn(const std::string& text, const std::string& key) {
+  std::smatch m;
+  const std::regex re(key + R"( = \[([-0-9.e]+), ([-0-9.e]+), ([-0-9.e]+)\])");
+  EXPECT_TRUE(std::regex_search(text, m, re)) << key << " in\n" << text;
+  return {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
+}
+
+// Lyon's glancing claim is judged on each closed mesh's glancing variant: the same scene lit by
+// one light behind it, 130 to 160 degrees from the view, so that light and view graze the
+// surface where the highlight is; the triangle, seen from the front, has none. The scene itself
+// keeps its own lights.
+TEST(Study, GlancingVariantsAreLitFromBehind) {
+  const StudyResult r =
+      run_study({.scenes = 8, .seed = 1, .size = 32, .jobs = 2}, [](auto, auto) {});
+  const auto& claims = study_claims();
+  const auto glancing = static_cast<std::size_t>(
+      std::find_if(claims.begin(), claims.end(),
+                   [](const StudyClaim& c) { return c.name == "lyon-row10-loses-glancing"; }) -
+      claims.begin());
+  ASSERT_LT(glancing, claims.size());
+  int judged = 0;
+  for (const StudyScene& s : r.scenes) {
+    if (s.mesh == "triangle") {
+      EXPECT_TRUE(s.glancing_file.empty()) << s.index;
+      EXPECT_FALSE(s.applies[glancing]) << s.index;
+      continue;
+    }
+    ASSERT_FALSE(s.glancing_file.empty()) << s.index;
+    EXPECT_EQ(s.applies[glancing], s.shininess > 4) << s.index;
+    judged += s.applies[glancing] ? 1 : 0;
+    // Closed meshes are centred on the origin, the camera's target.
+    const Vec3 eye = VectorIn(s.glancing_file, "eye");
+    const Vec3 light = VectorIn(s.glancing_file, "position");
+    const double degrees =
+        std::acos(dot(normalized(eye), normalized(light))) * 180 / std::numbers::pi;
+    EXPECT_GE(degrees, 130 - 0.01) << s.index;
+    EXPECT_LE(degrees, 160 + 0.01) << s.index;
+    EXPECT_EQ(s.glancing_file.find("[[light]]"), s.glancing_file.rfind("[[light]]")) << s.index;
+    EXPECT_EQ(VectorIn(s.file, "eye").x, eye.x) << s.index;  // the same camera
+    EXPECT_EQ(s.file.find("glancing"), std::string::npos) << s.index;
+  }
+  EXPECT_GT(judged, 0);
 }
 
 TEST(Study, RefusesOutOfRangeOptions) {

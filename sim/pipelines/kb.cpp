@@ -94,9 +94,12 @@ KbSpan kb_random_span(Rng& rng, const KbSetupOptions& setup, int length) {
   return span;
 }
 
-std::vector<std::vector<std::int64_t>> kb_random_program(Rng& rng, const KbFormats& formats,
-                                                         const KbSetupOptions& setup) {
-  KbSpan span = kb_random_span(rng, setup);
+namespace {
+
+// kb_program() of `span`, made to fit the header's count: fewer terms first, then a narrower
+// sweep; `span` is left as the one the program is for.
+std::vector<std::vector<std::int64_t>> fitting_program(KbSpan& span, const KbFormats& formats,
+                                                       const KbSetupOptions& setup) {
   while (true) {
     try {
       return kb_program(span, setup.policy, formats);
@@ -111,6 +114,14 @@ std::vector<std::vector<std::int64_t>> kb_random_program(Rng& rng, const KbForma
       }
     }
   }
+}
+
+}  // namespace
+
+std::vector<std::vector<std::int64_t>> kb_random_program(Rng& rng, const KbFormats& formats,
+                                                         const KbSetupOptions& setup) {
+  KbSpan span = kb_random_span(rng, setup);
+  return fitting_program(span, formats, setup);
 }
 
 Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setup) {
@@ -252,6 +263,188 @@ int kb_guard_bits_needed(int length) {
   return static_cast<int>(std::ceil(std::log2((l * l - l + 2) / 2)));
 }
 
+namespace {
+
+// The longest span whose accumulated rounding stays within half an output LSB with the
+// configuration's guard bits (the contract's length clause), at most 4096.
+std::int64_t longest_span(const KbFormats& f) {
+  const int guard = f.acc.frac_bits - f.out.frac_bits;
+  std::int64_t longest = 0;
+  while (longest < 4096 && guard >= 0 &&
+         kb_guard_bits_needed(static_cast<int>(longest + 1)) <= guard) {
+    ++longest;
+  }
+  return longest;
+}
+
+// The first clause a program breaks, checked from reset, or InputContract::kIn.
+int broken_clause(const InputContract& contract, const std::vector<Word>& program) {
+  InputContract c = contract;
+  for (const Word& w : program) {
+    const int b = c.check(w);
+    if (b != InputContract::kIn) return b;
+  }
+  return InputContract::kIn;
+}
+
+// Every pixel value the engine outputs for `program` (run from reset).
+std::vector<double> run_engine(const KbFormats& f, const std::vector<Word>& program) {
+  KbModel m(f);
+  std::vector<std::int64_t> out;
+  for (const Word& w : program) (void)m.eval(w, out);
+  std::vector<double> values;
+  for (std::size_t i = 0; i < out.size() / 2; ++i) values.push_back(fx::to_real(out[2 * i], f.out));
+  return values;
+}
+
+// The program's own values accumulated without wrapping: the engine with an accumulator of 20
+// integer bits (the same fraction bits, so the same raw words), before clamping.
+std::vector<double> unwrapped(const KbFormats& f, const std::vector<Word>& program) {
+  KbFormats wide = f;
+  wide.acc = fx::Format{true, 20, f.acc.frac_bits};
+  KbModel m(wide);
+  std::vector<std::int64_t> trace, out;
+  m.trace_accumulator(&trace);
+  for (const Word& w : program) (void)m.eval(w, out);
+  std::vector<double> values;
+  for (const std::int64_t v : trace) values.push_back(fx::to_real(v, wide.acc));
+  return values;
+}
+
+}  // namespace
+
+KbOutputError kb_output_error(const KbFormats& f, const KbSetupOptions& setup,
+                              const InputContract& contract, int programs, std::uint64_t seed) {
+  const double top = fx::to_real(f.out.max_raw(), f.out);
+  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
+  KbOutputError e;
+  double sum = 0;
+  for (int n = 0; n < programs; ++n) {
+    Rng rng(seed, kStimulusStream, static_cast<std::uint64_t>(n));
+    KbSpan span = kb_random_span(rng, setup);
+    const std::vector<Word> program = fitting_program(span, f, setup);
+    if (broken_clause(contract, program) != InputContract::kIn) {
+      ++e.out_of_contract;
+      continue;
+    }
+    ++e.programs;
+    const std::vector<double> got = run_engine(f, program);
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      const double d =
+          std::abs(got[i] - std::clamp(kb_exact(span, static_cast<int>(i)), 0.0, top)) / lsb;
+      e.max = std::max(e.max, d);
+      sum += d;
+      ++e.pixels;
+    }
+  }
+  e.mean = e.pixels == 0 ? 0 : sum / static_cast<double>(e.pixels);
+  return e;
+}
+
+std::vector<KbContractRow> kb_out_of_contract(const KbFormats& f, const KbSetupOptions& setup,
+                                              const InputContract& contract, std::uint64_t samples,
+                                              std::uint64_t seed) {
+  const std::size_t clauses = contract.clauses().size();
+  std::vector<KbContractRow> rows(clauses + 1);
+  for (std::size_t c = 0; c < clauses; ++c) rows[c].clause = contract.clauses()[c];
+  rows[clauses].clause = "any (arbitrary values)";
+  const double top = fx::to_real(f.out.max_raw(), f.out);
+  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
+  const double acc_max = fx::to_real(f.acc.max_raw(), f.acc);
+  const std::int64_t longest = longest_span(f);
+  const std::uint64_t max_events = (std::uint64_t{1} << f.event_bits) - 1;
+  const auto q = [&f](double x) {
+    return fx::quantize(x, f.acc, fx::Round::half_even, fx::Overflow::saturate);
+  };
+  const auto record = [&](KbContractRow& r, const std::vector<double>& got,
+                          const std::vector<double>& want) {
+    ++r.programs;
+    for (std::size_t i = 0; i < got.size() && i < want.size(); ++i) {
+      const double w = std::clamp(want[i], 0.0, top);
+      const double d = std::abs(got[i] - w);
+      if (d > r.max_error || r.pixels == 0) {
+        r.max_error = d;
+        r.worst = got[i];
+        r.worst_want = w;
+      }
+      if (d > lsb) ++r.off;
+      ++r.pixels;
+    }
+  };
+  const std::uint64_t per_clause = std::max<std::uint64_t>(samples / (clauses + 1), 1);
+  for (std::size_t c = 0; c <= clauses; ++c) {
+    if (c == 2 && longest >= 4096) {
+      rows[c].note = "cannot be broken: the header's n holds at most 4096 pixels";
+      continue;
+    }
+    for (std::uint64_t tries = 0; rows[c].programs < per_clause && tries < 20 * per_clause;
+         ++tries) {
+      Rng rng(seed, kStimulusStream, (std::uint64_t{c} << 40) + tries);
+      KbSpan span;
+      std::vector<Word> program;
+      bool against_span = c == 2 || c == 3;  // else: the program's own values, unwrapped
+      if (c == clauses) {
+        program = random_program(rng, f, max_events);
+      } else if (c == 2) {  // a span longer than the guard bits cover
+        span = kb_random_span(rng, setup,
+                              static_cast<int>(longest + 1 +
+                                               static_cast<std::int64_t>(rng.below(
+                                                   static_cast<std::uint64_t>(4096 - longest)))));
+        program = fitting_program(span, f, setup);
+      } else {
+        span = kb_random_span(rng, setup);
+        program = fitting_program(span, f, setup);
+        if (broken_clause(contract, program) != InputContract::kIn) continue;
+        const double u = rng.uniform();
+        const bool low = rng.below(2) == 0;
+        switch (c) {
+          case 0:  // f below 0 or above 1
+            program[0][2] = q(low ? -u * acc_max : 1 + lsb + u * (acc_max - 1));
+            break;
+          case 1: {  // Δf beyond 1 or Δ²f beyond 2, in the header or a reloading event
+            std::vector<std::size_t> reloads{0};
+            for (std::size_t k = 1; k < program.size(); ++k) {
+              if (program[k][5] != 0) reloads.push_back(k);
+            }
+            Word& w = program[reloads[rng.below(reloads.size())]];
+            const double sign = rng.below(2) == 0 ? -1 : 1;
+            if (low) {
+              w[3] = q(sign * (1 + lsb + u * (acc_max - 1)));
+            } else {
+              w[4] = q(sign * (2 + lsb + u * (acc_max - 2)));
+            }
+            break;
+          }
+          default: {  // an event after the last pixel, or before the one before it
+            if (program.size() < 2) continue;
+            const std::size_t k = 1 + rng.below(program.size() - 1);
+            const std::int64_t last = program[0][0];
+            if (low || k == 1) {
+              program[k][0] = last + static_cast<std::int64_t>(
+                                         rng.below(static_cast<std::uint64_t>(4096 - last)));
+            } else {
+              program[k][0] = static_cast<std::int64_t>(
+                  rng.below(static_cast<std::uint64_t>(program[k - 1][0] + 1)));
+            }
+            break;
+          }
+        }
+      }
+      const int broken = broken_clause(contract, program);
+      if (broken == InputContract::kIn) continue;
+      if (c < clauses && static_cast<std::size_t>(broken) != c) continue;
+      std::vector<double> want;
+      if (against_span) {
+        for (int i = 0; i < span.length; ++i) want.push_back(kb_exact(span, i));
+      } else {
+        want = unwrapped(f, program);
+      }
+      record(rows[c], run_engine(f, program), want);
+    }
+  }
+  return rows;
+}
+
 // ---- registry entry ----
 namespace {
 
@@ -275,13 +468,7 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
 InputContract contract(const PipelineModel& model, const Config&) {
   const KbFormats& f = dynamic_cast<const KbModel&>(model).formats();
   const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
-  // The longest span whose accumulated rounding stays within half an output LSB.
-  const int guard = f.acc.frac_bits - f.out.frac_bits;
-  std::int64_t longest = 0;
-  while (longest < 4096 && guard >= 0 &&
-         kb_guard_bits_needed(static_cast<int>(longest + 1)) <= guard) {
-    ++longest;
-  }
+  const std::int64_t longest = longest_span(f);
   struct Parse {
     std::int64_t remaining = 0;  // event words still due for the current span
     std::int64_t last = 0;       // its last pixel
@@ -475,7 +662,7 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
   return tally.result();
 }
 
-void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed,
+void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
              AnalysisReport& out) {
   out.print(
       "Three-piece quadratic against cos^n theta (0 beyond pi/2): max and rms over theta in "
@@ -520,6 +707,61 @@ void analyze(std::span<const Config>, std::uint64_t samples, std::uint64_t seed,
       [&](int length, int g) {
         return kb_drift(length, g, KbPolicy::exact_reload, out_fmt, spans, seed);
       });
+
+  // Per configuration: inside the input contract, then each clause broken alone.
+  const int programs = static_cast<int>(std::max<std::uint64_t>(1, samples / 50));
+  out.print(
+      "\nOutput against the exact span (kb_exact clamped to the output range), per "
+      "configuration, in output LSBs: the programs of {} random spans of the configuration's "
+      "setup, those inside the input contract (docs/kb.md), seed {}\n",
+      programs, seed);
+  out.print("  {:<14} {:>12} {:>9} {:>10} {:>9} {:>9} {:>9}\n", "config", "policy", "programs",
+            "pixels", "max", "mean", "left out");
+  out.table("Output against the exact span inside the input contract, in output LSBs",
+            {"config", "policy", "programs", "pixels", "max_lsb", "mean_lsb", "out_of_contract"});
+  std::vector<KbModel> models;
+  for (const Config& cfg : configs) {
+    const KbFormats f = KbFormats::from_config(cfg);
+    const KbSetupOptions so = KbSetupOptions::from_config(cfg);
+    models.emplace_back(f);
+    const KbOutputError e = kb_output_error(f, so, contract(models.back(), cfg), programs, seed);
+    const std::string policy = so.policy == KbPolicy::d2_only ? "d2_only" : "exact_reload";
+    out.print("  {:<14} {:>12} {:>9} {:>10} {:>9.4f} {:>9.4f} {:>9}\n", cfg.name(), policy,
+              e.programs, e.pixels, e.max, e.mean, e.out_of_contract);
+    out.row({cfg.name(), policy, static_cast<std::int64_t>(e.programs),
+             static_cast<std::int64_t>(e.pixels), e.max, e.mean,
+             static_cast<std::int64_t>(e.out_of_contract)});
+  }
+  out.print(
+      "\nOutside the input contract: every pixel against what the program was written for "
+      "(the exact span for the length and event clauses, the program's values accumulated "
+      "without wrapping for the others), both clamped to the output range, absolute; each "
+      "clause broken alone in setup programs, then random programs with arbitrary values; {} "
+      "programs per row, seed {}\n",
+      std::max<std::uint64_t>(programs / 5, 1), seed);
+  out.table("Outside the input contract: output against the intended values, absolute",
+            {"config", "clause", "programs", "pixels", "max_error", "worst", "worst_want",
+             "pixels_off", "note"});
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    const KbFormats& f = models[i].formats();
+    const auto rows = kb_out_of_contract(f, KbSetupOptions::from_config(configs[i]),
+                                         contract(models[i], configs[i]),
+                                         static_cast<std::uint64_t>(programs), seed);
+    out.print("  {}\n  {:<38} {:>8} {:>9} {:>9} {:>17} {:>12}\n", configs[i].name(),
+              "clause broken first", "programs", "pixels", "max err", "worst: out/want",
+              "> 1 LSB off");
+    for (const KbContractRow& r : rows) {
+      if (!r.note.empty()) {
+        out.print("  {:<38} {}\n", r.clause, r.note);
+      } else {
+        out.print("  {:<38} {:>8} {:>9} {:>9.4f} {:>8.4f}/{:<8.4f} {:>12}\n", r.clause, r.programs,
+                  r.pixels, r.max_error, r.worst, r.worst_want, r.off);
+      }
+      out.row({configs[i].name(), r.clause, static_cast<std::int64_t>(r.programs),
+               static_cast<std::int64_t>(r.pixels), r.max_error, r.worst, r.worst_want,
+               static_cast<std::int64_t>(r.off), r.note});
+    }
+  }
 }
 
 }  // namespace

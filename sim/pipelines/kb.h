@@ -10,6 +10,7 @@
 #include "base/rng.h"
 #include "model/kb.h"
 #include "model/kb_setup.h"
+#include "sim/cosim/contract.h"
 #include "sim/cosim/stimulus.h"
 #include "sim/pipelines/registry.h"
 
@@ -52,5 +53,39 @@ struct KbFitRow {
 // Guard bits that bound the accumulated rounding of f, Δf and Δ²f by half an output LSB over
 // a span of `length` pixels: the smallest G with (L² - L + 2)/2 · 2^-(G+1) <= 1/2 (docs/kb.md).
 [[nodiscard]] int kb_guard_bits_needed(int length);
+
+// A configuration's output against the exact span (kb_exact, clamped to the output's range), in
+// output LSBs, over the programs of `programs` random spans (kb_random_program with the
+// configuration's setup) inside the input contract: a program with any word outside it is
+// counted in out_of_contract and left out. `contract` is the configuration's, from reset.
+struct KbOutputError {
+  double max = 0, mean = 0;
+  std::uint64_t programs = 0, pixels = 0, out_of_contract = 0;
+};
+[[nodiscard]] KbOutputError kb_output_error(const KbFormats& formats, const KbSetupOptions& setup,
+                                            const InputContract& contract, int programs,
+                                            std::uint64_t seed);
+
+// The engine outside its input contract (docs/kb.md, "Input contract"): per clause, in-contract
+// setup programs with that one clause broken (header f moved out of [0, 1]; a header difference
+// or a reloading event's Δf beyond |d1| <= 1, |d2| <= 2; a span longer than the guard bits
+// cover; an event moved after the last pixel or before its predecessor), then random
+// well-formed programs with arbitrary values that break any clause. Every pixel's output
+// against what the program was written for, clamped to the output range: the exact span for
+// the length and event clauses, the program's own values accumulated without wrapping for the
+// others. `samples` programs over all rows; rows with no programs say why in `note`.
+struct KbContractRow {
+  std::string clause;
+  std::uint64_t programs = 0, pixels = 0;
+  double max_error = 0;              // absolute
+  double worst = 0, worst_want = 0;  // the output and the reference at the largest error
+  std::uint64_t off = 0;             // pixels more than one output LSB off
+  std::string note;
+};
+[[nodiscard]] std::vector<KbContractRow> kb_out_of_contract(const KbFormats& formats,
+                                                            const KbSetupOptions& setup,
+                                                            const InputContract& contract,
+                                                            std::uint64_t samples,
+                                                            std::uint64_t seed);
 
 }  // namespace phongsim

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "base/error.h"
 #include "model/quad.h"
@@ -147,7 +148,7 @@ double quad_drift(int size, int guard_bits, fx::Format out, int triangles, std::
 }
 
 QuadOutputError quad_output_error(const QuadFormats& f, QuadMode mode, int triangles,
-                                  std::uint64_t seed) {
+                                  std::uint64_t seed, const InputContract* contract) {
   const QuadModel m(f);
   const double lsb = std::ldexp(1.0, -f.out.frac_bits);
   const double top = fx::to_real(f.out.max_raw(), f.out);
@@ -158,6 +159,13 @@ QuadOutputError quad_output_error(const QuadFormats& f, QuadMode mode, int trian
     const quad::SubpixelTri tri = random_triangle(rng, f.sub_bits);
     std::array<quad::Coeffs, 3> colour;
     for (auto& c : colour) c = random_colour(rng, mode);
+    if (contract != nullptr) {
+      InputContract check = *contract;
+      if (check.check(QuadModel::words(quad_program(tri, colour, f))) != InputContract::kIn) {
+        ++e.out_of_contract;
+        continue;
+      }
+    }
     walk_with_direct(m, tri, colour, [&](const Walked& w, std::size_t i, int ch, double exact) {
       // Clamped to what the output can hold: 0.8 tops out at 255/256, not 1.
       const double d =
@@ -170,6 +178,133 @@ QuadOutputError quad_output_error(const QuadFormats& f, QuadMode mode, int trian
   }
   e.mean = e.pixels == 0 ? 0 : sum / static_cast<double>(e.pixels);
   return e;
+}
+
+std::vector<QuadContractRow> quad_out_of_contract(const QuadFormats& f, QuadMode mode,
+                                                  const InputContract& contract,
+                                                  std::uint64_t samples, std::uint64_t seed) {
+  const QuadModel m(f);
+  const std::size_t clauses = contract.clauses().size();
+  std::vector<QuadContractRow> rows(clauses + 1);
+  for (std::size_t c = 0; c < clauses; ++c) rows[c].clause = contract.clauses()[c];
+  rows[clauses].clause = "(not checked) colour samples in [-8, 9]";
+  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
+  const double top = fx::to_real(f.out.max_raw(), f.out);
+  const std::int64_t sub = std::int64_t{1} << f.sub_bits;
+  const std::int64_t r_max = (std::int64_t{1} << f.r_bits()) - 1;
+  // The largest square box the guard bits cover (the box clause).
+  const int guard = f.acc.frac_bits - f.out.frac_bits;
+  int box = 0;
+  while (box < 2048 && quad_guard_bits_needed(box + 1, box + 1) <= guard) ++box;
+  const auto check = [&contract](const std::vector<std::int64_t>& words) {
+    InputContract c = contract;
+    return c.check(words);
+  };
+  const std::uint64_t per_clause = std::max<std::uint64_t>(samples / (clauses + 1), 1);
+  for (std::size_t c = 0; c <= clauses; ++c) {
+    QuadContractRow& row = rows[c];
+    if (c == 1 && box >= 2048) {
+      row.note = "cannot be broken: the guard bits cover the whole 2048 x 2048 screen";
+      continue;
+    }
+    for (std::uint64_t tries = 0; row.programs < per_clause && tries < 20 * per_clause; ++tries) {
+      Rng rng(seed, kStimulusStream, (std::uint64_t{c} << 40) + tries);
+      quad::SubpixelTri tri;
+      if (c == 1) {  // vertices in a box larger than the guard bits cover
+        const double side = std::exp(std::log(box + 1.0) +
+                                     rng.uniform() * (std::log(2047.0) - std::log(box + 1.0)));
+        const double x = rng.uniform() * (2048 - side), y = rng.uniform() * (2048 - side);
+        std::array<quad::Vertex2, 3> v;
+        for (auto& p : v) p = {x + rng.uniform() * side, y + rng.uniform() * side};
+        tri = quad::quantize(v[0], v[1], v[2], f.sub_bits);
+      } else {
+        tri = random_triangle(rng, f.sub_bits);
+      }
+      if (quad::orientation(tri) == 0) continue;  // covers nothing: no colour to compare
+      std::array<quad::Coeffs, 3> colour;
+      for (auto& col : colour) {
+        if (c == clauses) {
+          const auto big = [&rng]() { return 17 * rng.uniform() - 8; };
+          if (mode == QuadMode::linear) {
+            col = quad::linear_coefficients(big(), big(), big());
+          } else {
+            quad::Samples r;
+            for (auto& x : r) x = big();
+            col = quad::coefficients(r);
+          }
+        } else {
+          col = random_colour(rng, mode);
+        }
+      }
+      std::vector<std::int64_t> words = QuadModel::words(quad_program(tri, colour, f));
+      if (c == 0) {  // one used edge's words as the setup never writes them
+        if (check(words) != InputContract::kIn) continue;
+        std::vector<std::size_t> used;
+        for (std::size_t k = 0; k < 3; ++k) {
+          if (words[4 + 6 * k] == 1 || words[4 + 6 * k] == 2) used.push_back(4 + 6 * k);
+        }
+        if (used.empty()) continue;
+        std::int64_t* e = words.data() + used[rng.below(used.size())];  // kind, q, r, d, dq, dr
+        switch (rng.below(4)) {
+          case 0:
+            e[2] = e[3] + static_cast<std::int64_t>(rng.below(static_cast<std::uint64_t>(
+                              std::max<std::int64_t>(r_max - e[3] + 1, 1))));
+            break;
+          case 1:
+            e[5] = e[3] + static_cast<std::int64_t>(rng.below(static_cast<std::uint64_t>(
+                              std::max<std::int64_t>(r_max - e[3] + 1, 1))));
+            break;
+          case 2:
+            e[3] = std::min(r_max, e[3] + 1 +
+                                       static_cast<std::int64_t>(
+                                           rng.below(static_cast<std::uint64_t>(sub - 1))));
+            break;
+          default:
+            e[0] = 3;
+            break;
+        }
+      }
+      const int broken = check(words);
+      if (c < clauses ? broken != static_cast<int>(c) : broken != InputContract::kIn) continue;
+      ++row.programs;
+      std::vector<std::int64_t> pixels;
+      (void)m.walk(QuadModel::program(words), pixels);
+      // Coverage against the triangle's own pixels.
+      const auto want = quad::raster(tri, 2048, 2048);
+      std::vector<std::pair<int, int>> got;
+      for (std::size_t i = 0; i < pixels.size() / 5; ++i) {
+        got.emplace_back(static_cast<int>(pixels[5 * i]), static_cast<int>(pixels[5 * i + 1]));
+      }
+      const auto by_row = [](const std::pair<int, int>& a, const std::pair<int, int>& b) {
+        return std::pair(a.second, a.first) < std::pair(b.second, b.first);
+      };
+      std::sort(got.begin(), got.end(), by_row);
+      std::vector<std::pair<int, int>> extra, missing;
+      std::set_difference(got.begin(), got.end(), want.begin(), want.end(),
+                          std::back_inserter(extra), by_row);
+      std::set_difference(want.begin(), want.end(), got.begin(), got.end(),
+                          std::back_inserter(missing), by_row);
+      row.extra += extra.size();
+      row.missing += missing.size();
+      row.worst_extra = std::max<std::uint64_t>(row.worst_extra, extra.size());
+      // Channels against direct evaluation at every emitted pixel's centre.
+      const auto v = quad::to_pixels(tri);
+      for (std::size_t i = 0; i < pixels.size() / 5; ++i) {
+        const quad::St st = quad::st_at(v[0], v[1], v[2],
+                                        {static_cast<double>(pixels[5 * i]) + 0.5,
+                                         static_cast<double>(pixels[5 * i + 1]) + 0.5});
+        for (int ch = 0; ch < 3; ++ch) {
+          const double d = std::abs(
+              fx::to_real(pixels[5 * i + 2 + static_cast<std::size_t>(ch)], f.out) -
+              std::clamp(quad::eval_st(colour[static_cast<std::size_t>(ch)], st), 0.0, top));
+          row.max_error = std::max(row.max_error, d);
+          if (d > lsb) ++row.off;
+        }
+        ++row.pixels;
+      }
+    }
+  }
+  return rows;
 }
 
 // ---- registry entry ----
@@ -398,21 +533,57 @@ void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64
       "\nOutput against direct evaluation, per configuration: |output - r(s, t)|, r "
       "clamped to the output range, in output LSBs over {} random triangles of the "
       "co-simulation's distribution (boxes up to 1024 pixels), colours of the "
-      "configuration's [setup] mode, seed {}\n",
+      "configuration's [setup] mode, seed {}; triangles outside the input contract "
+      "(docs/quad.md) are left out\n",
       triangles * 10, seed);
-  out.print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9} {:>9}\n", "config", "mode", "acc", "out",
-            "pixels", "max", "mean");
-  out.table("Output against direct evaluation, in output LSBs",
-            {"config", "mode", "acc", "out", "pixels", "max_lsb", "mean_lsb"});
+  out.print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9} {:>9} {:>9}\n", "config", "mode", "acc", "out",
+            "pixels", "max", "mean", "left out");
+  out.table("Output against direct evaluation inside the input contract, in output LSBs",
+            {"config", "mode", "acc", "out", "pixels", "max_lsb", "mean_lsb", "out_of_contract"});
   for (const Config& cfg : configs) {
     const QuadFormats f = QuadFormats::from_config(cfg);
     const QuadMode mode = quad_mode(cfg);
-    const QuadOutputError e = quad_output_error(f, mode, triangles * 10, seed);
-    out.print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9.4f} {:>9.4f}\n", cfg.name(),
+    const QuadModel m(f);
+    const InputContract c = contract(m, cfg);
+    const QuadOutputError e = quad_output_error(f, mode, triangles * 10, seed, &c);
+    out.print("  {:<16} {:>9} {:>6} {:>5} {:>10} {:>9.4f} {:>9.4f} {:>9}\n", cfg.name(),
               mode == QuadMode::linear ? "linear" : "quadratic", f.acc.str(), f.out.str(), e.pixels,
-              e.max, e.mean);
+              e.max, e.mean, e.out_of_contract);
     out.row({cfg.name(), std::string(mode == QuadMode::linear ? "linear" : "quadratic"),
-             f.acc.str(), f.out.str(), static_cast<std::int64_t>(e.pixels), e.max, e.mean});
+             f.acc.str(), f.out.str(), static_cast<std::int64_t>(e.pixels), e.max, e.mean,
+             static_cast<std::int64_t>(e.out_of_contract)});
+  }
+
+  const std::uint64_t programs = std::max<std::uint64_t>(1, samples / 100);
+  out.print(
+      "\nOutside the input contract: pixels against the triangle each program was written for "
+      "(emitted but not covered, covered but missed) and every emitted pixel's channels "
+      "against r(s, t) evaluated directly, clamped to the output range, absolute; each clause "
+      "broken alone in setup programs, then over-large colour samples (not checked by the "
+      "contract); {} programs per row, seed {}\n",
+      std::max<std::uint64_t>(programs / 3, 1), seed);
+  out.table("Outside the input contract: coverage and channels against the triangle",
+            {"config", "clause", "programs", "pixels", "extra_pixels", "missing_pixels",
+             "most_extra_in_one", "max_error", "channels_off", "note"});
+  for (const Config& cfg : configs) {
+    const QuadFormats f = QuadFormats::from_config(cfg);
+    const QuadModel m(f);
+    const auto rows = quad_out_of_contract(f, quad_mode(cfg), contract(m, cfg), programs, seed);
+    out.print("  {}\n  {:<40} {:>8} {:>9} {:>8} {:>8} {:>10} {:>8} {:>12}\n", cfg.name(),
+              "clause broken first", "programs", "pixels", "extra", "missing", "most extra",
+              "max err", "> 1 LSB off");
+    for (const QuadContractRow& r : rows) {
+      if (!r.note.empty()) {
+        out.print("  {:<40} {}\n", r.clause, r.note);
+      } else {
+        out.print("  {:<40} {:>8} {:>9} {:>8} {:>8} {:>10} {:>8.4f} {:>12}\n", r.clause, r.programs,
+                  r.pixels, r.extra, r.missing, r.worst_extra, r.max_error, r.off);
+      }
+      out.row({cfg.name(), r.clause, static_cast<std::int64_t>(r.programs),
+               static_cast<std::int64_t>(r.pixels), static_cast<std::int64_t>(r.extra),
+               static_cast<std::int64_t>(r.missing), static_cast<std::int64_t>(r.worst_extra),
+               r.max_error, static_cast<std::int64_t>(r.off), r.note});
+    }
   }
 }
 

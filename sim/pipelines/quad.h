@@ -13,6 +13,7 @@
 #include "model/quad.h"
 #include "model/quad_setup.h"
 #include "ref/quad_float.h"
+#include "sim/cosim/contract.h"
 #include "sim/cosim/stimulus.h"
 #include "sim/pipelines/registry.h"
 
@@ -46,12 +47,40 @@ namespace phongsim {
 // output's range [0, max], in output LSBs
 // over every covered pixel and channel of `triangles` random triangles (random_triangle: every
 // size up to 1024-pixel boxes) with random colours of `mode`.
+// With `contract` (the configuration's), programs outside it are counted in out_of_contract and
+// left out.
 struct QuadOutputError {
   double max = 0;
   double mean = 0;
   std::uint64_t pixels = 0;
+  std::uint64_t out_of_contract = 0;
 };
 [[nodiscard]] QuadOutputError quad_output_error(const QuadFormats& formats, QuadMode mode,
-                                                int triangles, std::uint64_t seed);
+                                                int triangles, std::uint64_t seed,
+                                                const InputContract* contract = nullptr);
+
+// The walker outside its input contract (docs/quad.md, "Input contract"): per clause, random
+// in-contract setup programs with that one clause broken (one used edge's words changed: a
+// remainder or remainder step not below the divisor, a divisor off the subpixel grid or out of
+// range, an edge kind of 3; or a triangle whose box is larger than the guard bits cover), then,
+// though no clause checks it, in-contract programs whose colour samples are too large for the
+// accumulator (in [-8, 9]). Pixels against the triangle the program was written for: pixels the
+// walker emits that the triangle does not cover (extra) or misses (missing), and every emitted
+// pixel's channels against r(s, t) evaluated directly at its centre, clamped to the output
+// range, absolute. `samples` programs over all rows; rows with no programs say why in `note`.
+struct QuadContractRow {
+  std::string clause;
+  std::uint64_t programs = 0, pixels = 0;
+  std::uint64_t extra = 0, missing = 0;  // coverage against the triangle's
+  std::uint64_t worst_extra = 0;         // most extra pixels in one program
+  double max_error = 0;                  // channels, absolute
+  std::uint64_t off = 0;                 // channel values more than one output LSB off
+  std::string note;
+};
+[[nodiscard]] std::vector<QuadContractRow> quad_out_of_contract(const QuadFormats& formats,
+                                                                QuadMode mode,
+                                                                const InputContract& contract,
+                                                                std::uint64_t samples,
+                                                                std::uint64_t seed);
 
 }  // namespace phongsim

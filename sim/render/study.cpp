@@ -24,6 +24,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::uint64_t kStudyStream = 0x5354554459;  // "STUDY": the scenes' random stream
+// The glancing variants' lights: a stream of their own, so the scenes themselves do not change.
+constexpr std::uint64_t kGlancingStream = 0x474c414e4345;  // "GLANCE"
 
 // Triangle, dodecahedron and the 32-triangle sphere: the meshes whose normals vary a lot over a
 // triangle, where the seeds make their coarse-mesh claims.
@@ -35,11 +37,22 @@ bool coarse(const std::string& mesh) {
 
 // The methods of each protocol; a claim reads their colour correctness.
 const std::string kFullMethods =
-    "gouraud,gouraud4,quadratic,kb-exact,kb-onevec,lyon-k0,lyon-k1,lyon-k2,fence,highlight-track";
+    "gouraud,gouraud4,quadratic,kb-exact,kb-onevec,lyon-k0,lyon-k1,lyon-k2,fence,highlight-track,"
+    "fast-phong";
 const std::string kSpecularMethods = "gouraud,gouraud4,quadratic,env-map,blinn-map,quad-blinn-map";
+// Lyon's Figure 9 halfway rows 6 and 10, rendered in the glancing variant of each scene. (Row 8,
+// his projection, is no measure of a highlight kept there: its short D brightens glancing
+// highlights far beyond Blinn's, the "feature or bug" of his section on halfway vectors.)
+const std::string kGlancingMethods = "halfway-unit-k2,halfway-g2-k2";
 constexpr double kOneVectorTolerance = 0.005;  // "close to exact", in colour correctness
 
 using Scores = std::map<std::string, double, std::less<>>;  // method -> colour correctness
+
+// A scene's three renders: full colour against Phong, specular only against Blinn, and its
+// glancing variant's specular term against Blinn (empty when the scene has none).
+struct Renders {
+  Scores full, specular, glancing;
+};
 
 struct Judgement {
   bool applies = true;
@@ -48,7 +61,7 @@ struct Judgement {
 
 struct ClaimRule {
   StudyClaim claim;
-  Judgement (*judge)(const StudyScene& s, const Scores& full, const Scores& specular);
+  Judgement (*judge)(const StudyScene& s, const Renders& r);
 };
 
 double at(const Scores& s, std::string_view method) { return s.find(method)->second; }
@@ -59,7 +72,8 @@ const std::vector<ClaimRule>& rules() {
         "Vlasic, Table 6.1: quadratic > Gouraud subdivided > Gouraud (full colour, against "
         "Phong)",
         "min(quadratic - gouraud4, gouraud4 - gouraud)"},
-       [](const StudyScene&, const Scores& f, const Scores&) {
+       [](const StudyScene&, const Renders& r) {
+         const Scores& f = r.full;
          return Judgement{true, std::min(at(f, "quadratic") - at(f, "gouraud4"),
                                          at(f, "gouraud4") - at(f, "gouraud"))};
        }},
@@ -67,7 +81,8 @@ const std::vector<ClaimRule>& rules() {
         "Vlasic, Table 6.1 under his protocol: quadratic > Gouraud subdivided > Gouraud "
         "(specular only, against Blinn)",
         "min(quadratic - gouraud4, gouraud4 - gouraud)"},
-       [](const StudyScene&, const Scores&, const Scores& s) {
+       [](const StudyScene&, const Renders& r) {
+         const Scores& s = r.specular;
          return Judgement{true, std::min(at(s, "quadratic") - at(s, "gouraud4"),
                                          at(s, "gouraud4") - at(s, "gouraud"))};
        }},
@@ -75,7 +90,8 @@ const std::vector<ClaimRule>& rules() {
         "Vlasic, section 6: on coarse meshes the quadratic Blinn map beats the Blinn map, the "
         "environment map and quadratic shading (specular only, against Blinn)",
         "quad-blinn-map - max(blinn-map, env-map, quadratic)"},
-       [](const StudyScene& sc, const Scores&, const Scores& s) {
+       [](const StudyScene& sc, const Renders& r) {
+         const Scores& s = r.specular;
          const double best = std::max({at(s, "blinn-map"), at(s, "env-map"), at(s, "quadratic")});
          return Judgement{coarse(sc.mesh), at(s, "quad-blinn-map") - best};
        }},
@@ -83,7 +99,8 @@ const std::vector<ClaimRule>& rules() {
         "Lyon: more squarings approach cos^n, f_2 > f_1 > f_0, for shininess n >= 16 (full "
         "colour, against Phong)",
         "min(lyon-k2 - lyon-k1, lyon-k1 - lyon-k0)"},
-       [](const StudyScene& sc, const Scores& f, const Scores&) {
+       [](const StudyScene& sc, const Renders& r) {
+         const Scores& f = r.full;
          return Judgement{sc.shininess >= 16, std::min(at(f, "lyon-k2") - at(f, "lyon-k1"),
                                                        at(f, "lyon-k1") - at(f, "lyon-k0"))};
        }},
@@ -91,14 +108,16 @@ const std::vector<ClaimRule>& rules() {
         "Kuijk-Blake: angular interpolation beats Gouraud on coarse meshes (kb-exact, full "
         "colour, against Phong)",
         "kb-exact - gouraud"},
-       [](const StudyScene& sc, const Scores& f, const Scores&) {
+       [](const StudyScene& sc, const Renders& r) {
+         const Scores& f = r.full;
          return Judgement{coarse(sc.mesh), at(f, "kb-exact") - at(f, "gouraud")};
        }},
       {{"kb-onevec-close",
         "Kuijk-Blake: the one-vector method stays close to exact evaluation (colour "
         "correctness within 0.005 of kb-exact)",
         "0.005 - |kb-onevec - kb-exact|"},
-       [](const StudyScene&, const Scores& f, const Scores&) {
+       [](const StudyScene&, const Renders& r) {
+         const Scores& f = r.full;
          return Judgement{true,
                           kOneVectorTolerance - std::abs(at(f, "kb-onevec") - at(f, "kb-exact"))};
        }},
@@ -106,9 +125,39 @@ const std::vector<ClaimRule>& rules() {
         "Lai-Tai: the highlight track beats Fence and Gouraud shading (full colour, against "
         "Phong)",
         "highlight-track - max(fence, gouraud)"},
-       [](const StudyScene&, const Scores& f, const Scores&) {
+       [](const StudyScene&, const Renders& r) {
+         const Scores& f = r.full;
          return Judgement{true,
                           at(f, "highlight-track") - std::max(at(f, "fence"), at(f, "gouraud"))};
+       }},
+      {{"lyon-row10-loses-glancing",
+        "Lyon, Figure 9: for n > 4 the row-10 halfway form (D = Hg2 - N) loses the glancing "
+        "highlight, scoring below row 6 (H normalized, his excellent approximation to Blinn) "
+        "(glancing variant: one light behind the object, 130-160 degrees from the view; "
+        "specular only, against Blinn)",
+        "halfway-unit-k2 - halfway-g2-k2"},
+       [](const StudyScene& sc, const Renders& r) {
+         if (r.glancing.empty() || sc.shininess <= 4) return Judgement{false, 0};
+         return Judgement{true,
+                          at(r.glancing, "halfway-unit-k2") - at(r.glancing, "halfway-g2-k2")};
+       }},
+      {{"env-map-last",
+        "Vlasic, section 6: under point lights the environment map comes last, below the "
+        "quadratic Blinn map, the Blinn map and quadratic shading (specular only, against Blinn)",
+        "min(quad-blinn-map, blinn-map, quadratic) - env-map"},
+       [](const StudyScene&, const Renders& r) {
+         const Scores& s = r.specular;
+         return Judgement{
+             true, std::min({at(s, "quad-blinn-map"), at(s, "blinn-map"), at(s, "quadratic")}) -
+                       at(s, "env-map")};
+       }},
+      {{"fast-phong-beats-gouraud",
+        "Bishop-Weimer via Lai-Tai and Vlasic: Fast Phong shading shows the highlight Gouraud "
+        "shading misses, beating Gouraud (full colour, against Phong)",
+        "fast-phong - gouraud"},
+       [](const StudyScene&, const Renders& r) {
+         const Scores& f = r.full;
+         return Judgement{true, at(f, "fast-phong") - at(f, "gouraud")};
        }},
   };
   return all;
@@ -116,20 +165,23 @@ const std::vector<ClaimRule>& rules() {
 
 std::string vec(const Vec3& v) { return fmt::format("[{:.6f}, {:.6f}, {:.6f}]", v.x, v.y, v.z); }
 
-// A random unit vector in the cone of half-angle `spread` (radians) around `axis`.
-Vec3 around(Rng& rng, const Vec3& axis, double spread) {
+// A random unit vector (uniform on the sphere's zone) between `inner` and `spread` radians from
+// `axis`: inner 0 is the cone of half-angle `spread`.
+Vec3 around(Rng& rng, const Vec3& axis, double spread, double inner = 0) {
   const Vec3 side =
       normalized(std::abs(axis.y) < 0.9 ? cross(axis, {0, 1, 0}) : cross(axis, {1, 0, 0}));
   const Vec3 other = cross(axis, side);
-  const double cos_t = 1 - rng.uniform() * (1 - std::cos(spread));
+  const double cos_t = std::cos(inner) - rng.uniform() * (std::cos(inner) - std::cos(spread));
   const double sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t));
   const double phi = 2 * std::numbers::pi * rng.uniform();
   return normalized(axis * cos_t + side * (sin_t * std::cos(phi)) +
                     other * (sin_t * std::sin(phi)));
 }
 
-// Scene `index` of the study: a pure function of (seed, index). Fills `s` and returns the
-// scene file's text.
+// Scene `index` of the study: a pure function of (seed, index). Fills `s` (its glancing
+// variant's text too: the same scene lit by one light behind a closed mesh, 130 to 160 degrees
+// from the view, so that its highlight lies where light and view graze the surface; none for
+// the triangle, which is seen from the front) and returns the scene file's text.
 std::string random_scene(std::uint64_t seed, std::uint64_t index, StudyScene& s) {
   Rng rng(seed, kStudyStream, index);
   s.index = index;
@@ -163,6 +215,14 @@ std::string random_scene(std::uint64_t seed, std::uint64_t index, StudyScene& s)
       "[material]\nambient = {}\ndiffuse = {}\nspecular = [{:.6f}, {:.6f}, {:.6f}]\n"
       "shininess = {}\n",
       vec(diffuse * 0.1), vec(diffuse), specular, specular, specular, s.shininess);
+  if (s.mesh != "triangle") {
+    Rng glancing(seed, kGlancingStream, index);
+    const double deg = std::numbers::pi / 180;
+    const Vec3 dir = around(glancing, view * -1.0, 50 * deg, 20 * deg);
+    s.glancing_file = fmt::format("name = \"study-{}-glancing\"{}[[light]]\nposition = {}\n", index,
+                                  text.substr(text.find('\n')),
+                                  vec(target + dir * (2.5 + 3.5 * glancing.uniform())));
+  }
   // One or two white point lights, 2.5 to 6 from the centre, within 60 degrees of the view.
   s.lights = 1 + static_cast<int>(rng.below(2));
   for (int k = 0; k < s.lights; ++k) {
@@ -238,10 +298,16 @@ StudyResult run_study(const StudyOptions& o,
         const fs::path file = dir.path() / fmt::format("scene{}.toml", i);
         s.file = random_scene(o.seed, i, s);
         std::ofstream(file) << s.file;
-        const Scores full = scores(file, kFullMethods, Terms::all, "phong", o.size);
-        const Scores specular = scores(file, kSpecularMethods, Terms::specular, "blinn", o.size);
+        Renders renders;
+        renders.full = scores(file, kFullMethods, Terms::all, "phong", o.size);
+        renders.specular = scores(file, kSpecularMethods, Terms::specular, "blinn", o.size);
+        if (!s.glancing_file.empty()) {
+          const fs::path glancing = dir.path() / fmt::format("scene{}-glancing.toml", i);
+          std::ofstream(glancing) << s.glancing_file;
+          renders.glancing = scores(glancing, kGlancingMethods, Terms::specular, "blinn", o.size);
+        }
         for (const ClaimRule& r : rules()) {
-          const Judgement j = r.judge(s, full, specular);
+          const Judgement j = r.judge(s, renders);
           s.applies.push_back(j.applies);
           s.holds.push_back(j.applies && j.difference > 0);
           s.difference.push_back(j.difference);
@@ -307,6 +373,9 @@ std::vector<fs::path> write_study_outputs(const StudyResult& r, OutputSet& set) 
   for (const StudyScene& s : r.scenes) {
     written.push_back(fs::path("scenes") / fmt::format("scene{}.toml", s.index));
     std::fputs(s.file.c_str(), set.add(written.back()).get());
+    if (s.glancing_file.empty()) continue;
+    written.push_back(fs::path("scenes") / fmt::format("scene{}-glancing.toml", s.index));
+    std::fputs(s.glancing_file.c_str(), set.add(written.back()).get());
   }
   plot_figure("study",
               {"--csv", data.temp_path().string(), "--title",

@@ -1,9 +1,10 @@
 // `phongsim study`: the seeds' claims over many random scenes (docs/results.md, "How often the
 // claims hold"). Each scene is a built-in mesh under a random view, random point lights and a
 // random material; it is rendered twice — full colour against float Phong, and Vlasic's protocol
-// (specular term only, against Blinn) — and every claim that applies to it is judged from the
-// colour correctness (eq. 6.1) of its methods. A claim's result is the fraction of scenes in
-// which it holds, with a 95 % Wilson interval.
+// (specular term only, against Blinn) — and, for a closed mesh, its glancing variant (one light
+// behind the object) once more for Lyon's glancing highlight; every claim that applies to it is
+// judged from the colour correctness (eq. 6.1) of its methods. A claim's result is the fraction
+// of scenes in which it holds, with a 95 % Wilson interval.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,9 @@ struct StudyScene {
   std::vector<bool> applies, holds;
   std::vector<double> difference;
   std::string file;  // the scene file (scenes/scene<index>.toml: `phongsim render --scene` it)
+  // Its glancing variant (scenes/scene<index>-glancing.toml): the same scene lit from behind
+  // (Lyon's glancing highlight); empty for the triangle.
+  std::string glancing_file;
 };
 
 struct StudyClaim {
