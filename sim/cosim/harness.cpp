@@ -162,10 +162,13 @@ HarnessResult stream_vectors(RtlDut& dut, std::size_t input_fields, std::size_t 
                              std::span<const std::int64_t> vectors,
                              const std::function<void(std::span<const std::int64_t>)>& on_output) {
   HarnessHooks hooks;
+  // 1024 vectors at a time, as a co-simulation's scoreboard hands them over.
   hooks.next_inputs = [&](std::uint64_t index) {
+    constexpr std::size_t kBatch = 1024;
+    const std::size_t at = std::min<std::size_t>(index * input_fields, vectors.size());
     InputBatch in;
-    in.vectors = vectors.subspan(std::min<std::size_t>(index * input_fields, vectors.size()));
-    in.last = true;
+    in.vectors = vectors.subspan(at, std::min(kBatch * input_fields, vectors.size() - at));
+    in.last = at + in.vectors.size() == vectors.size();
     return in;
   };
   hooks.check = [&](std::span<const std::uint64_t>, std::span<const std::int64_t> outputs,
