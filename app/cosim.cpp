@@ -181,6 +181,7 @@ int run(CosimCli& c) {
   // With --coverage: this command's functional coverpoints, every configuration's prefixed
   // "<pipeline>/<config>:", and the stall-pattern classes of its runs.
   Coverpoints points;
+  std::vector<LineWaiver> line_waivers;
   if (!c.coverage.empty()) declare_stall_classes(points);
   for (std::size_t k = 0; k < loaded.size(); ++k) {
     const Loaded& l = loaded[k];
@@ -196,6 +197,8 @@ int run(CosimCli& c) {
       CoverpointSampler sampler = l.pipeline->coverpoints(*l.model, l.cfg);
       count_coverpoints(sampler, *l.model, stimulus, o.seed, o.directed, o.random_vectors,
                         o.only_index);
+      line_waivers.insert(line_waivers.end(), sampler.line_waivers.begin(),
+                          sampler.line_waivers.end());
       points.merge(sampler.points.prefixed(fmt::format("{}/{}:", l.pipeline->name, l.cfg.name())));
     }
     for (const StallPattern& source : source_patterns) {
@@ -233,14 +236,15 @@ int run(CosimCli& c) {
   for (const CosimRun& r : runs) failed += r.report.passed ? 0 : 1;
   std::optional<CoverageSummary> coverage;
   if (!c.coverage.empty()) {
-    coverage = merge_coverage(c.coverage);
+    coverage = merge_coverage(c.coverage, line_waivers);
     const std::filesystem::path dir = c.coverage;
     fmt::print(
         text,
-        "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points), toggles {:.1f} % "
+        "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points{}), toggles {:.1f} % "
         "({} of {}); {}, {}\n",
         coverage->files, coverage->files == 1 ? "" : "s", (dir / "data").string(),
         coverage->line_percent(), coverage->line_hit, coverage->line_points,
+        coverage->line_waived == 0 ? "" : fmt::format(", {} waived", coverage->line_waived),
         coverage->toggle_percent(), coverage->toggle_hit, coverage->toggle_points,
         (dir / "coverage.info").string(), (dir / "html" / "index.html").string());
     // Earlier commands' counts in DIR first, so the file keeps their order.
@@ -270,7 +274,10 @@ int run(CosimCli& c) {
       j["coverage"] = {
           {"line_percent", coverage->line_percent()},
           {"toggle_percent", coverage->toggle_percent()},
-          {"lines", {{"hit", coverage->line_hit}, {"total", coverage->line_points}}},
+          {"lines",
+           {{"hit", coverage->line_hit},
+            {"total", coverage->line_points},
+            {"waived", coverage->line_waived}}},
           {"toggles", {{"hit", coverage->toggle_hit}, {"total", coverage->toggle_points}}},
           {"coverpoints",
            {{"hit", points.hit_points()},

@@ -16,6 +16,7 @@
 
 #include "model/fixed.h"
 #include "model/pipeline.h"
+#include "sim/cosim/coverage.h"
 #include "sim/cosim/stall.h"
 #include "sim/cosim/stimulus.h"
 
@@ -83,6 +84,9 @@ class Coverpoints {
 // keep state between vectors (a span program's words); use a fresh one per run.
 struct CoverpointSampler {
   Coverpoints points;
+  // The RTL line points the waived coverpoints make unreachable (an fx_resize saturation arm of
+  // the instance computing a requantization that cannot saturate): left out of the line figures.
+  std::vector<LineWaiver> line_waivers;
   std::function<void(PipelineModel& model, std::span<const std::int64_t> in, Coverpoints& points)>
       sample;
 };
