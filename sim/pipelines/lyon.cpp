@@ -93,6 +93,8 @@ Stimulus make_lyon_stimulus(const PipelineModel& model) {
       if (fig8) directed.push_back(pixel(up, up, 0.0, up, l, std::floor(std::sqrt(n))));
     }
   }
+  // A zero normal: N'·N' = 0, so y = 1 - z = 1 saturates y (S0.x stops below 1).
+  directed.push_back(pixel(Vec3{0, 0, 0}, Vec3{0, 0, 0}, 0.0, up, up, 1.0));
   // Unnormalized N': endpoints 90 degrees apart interpolated at a = 1/2 (length cos 45° = 0.71),
   // and short endpoints (length 0.7) with a = 0 and 1.
   const Vec3 side{1, 0, 0};
