@@ -62,12 +62,13 @@ void read_points(const fs::path& file, std::map<std::string, std::uint64_t>& poi
 const LineWaiver* waiver_of(const std::string& key, std::span<const LineWaiver> waivers,
                             const std::vector<std::regex>& res) {
   const std::string file = field(key, "f");
-  // The first line of the point's span ("S=80-81": an if's arm; "l" is the if's own line, the
-  // same for its else arm), else its line.
+  // The first line of the statements the point counts ("S=80-81": an if's arm; "l" is the if's
+  // own line, the same for its else arm, which may have no statements of its own and no S:
+  // never waived).
   const std::string span = field(key, "S");
   int line = 0;
   try {
-    line = std::stoi(span.empty() ? field(key, "l") : span);
+    line = std::stoi(span);
   } catch (const std::exception&) {
     return nullptr;
   }

@@ -14,8 +14,9 @@
 namespace phongsim {
 
 // Line points that cannot be reached, left out of the line figures: the points of `file` (the
-// path's end, e.g. "rtl/common/fx_resize.sv") whose statements start at lines first..last (an
-// if's arm starts at its first statement) in every instance whose
+// path's end, e.g. "rtl/common/fx_resize.sv") whose statements start at lines first..last
+// (Verilator's S field: an if's arm starts at its first statement; a point without statements
+// is never waived) in every instance whose
 // hierarchy matches `hier` (an ECMAScript regex searched in Verilator's "top.lyon_top...." name),
 // with the reason. The functional coverpoints name them (CoverpointSampler::line_waivers): an
 // fx_resize saturation arm of a requantization whose saturation is waived.
