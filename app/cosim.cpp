@@ -15,6 +15,7 @@
 #include "base/output_file.h"
 #include "base/temporaries.h"
 #include "sim/cosim/coverage.h"
+#include "sim/cosim/coverpoints.h"
 #include "sim/cosim/waveform.h"
 
 namespace phongsim::cli {
@@ -177,6 +178,11 @@ int run(CosimCli& c) {
   }
   const Progress progress = progress_line();
   std::vector<CosimRun> runs;
+  // With --coverage: this command's functional coverpoints, every configuration's prefixed
+  // "<pipeline>/<config>:", and the stall-pattern classes of its runs.
+  Coverpoints points;
+  std::vector<LineWaiver> line_waivers;
+  if (!c.coverage.empty()) declare_stall_classes(points);
   for (std::size_t k = 0; k < loaded.size(); ++k) {
     const Loaded& l = loaded[k];
     o.random_vectors =
@@ -187,6 +193,14 @@ int run(CosimCli& c) {
     }
     const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
     const CosimSubject subject = subject_of(l, targets[k], stimulus);
+    if (!c.coverage.empty()) {
+      CoverpointSampler sampler = l.pipeline->coverpoints(*l.model, l.cfg);
+      count_coverpoints(sampler, *l.model, stimulus, o.seed, o.directed, o.random_vectors,
+                        o.only_index);
+      line_waivers.insert(line_waivers.end(), sampler.line_waivers.begin(),
+                          sampler.line_waivers.end());
+      points.merge(sampler.points.prefixed(fmt::format("{}/{}:", l.pipeline->name, l.cfg.name())));
+    }
     for (const StallPattern& source : source_patterns) {
       for (const StallPattern& sink : sink_patterns) {
         o.source = source;
@@ -213,6 +227,7 @@ int run(CosimCli& c) {
         if (trace_file && r.report.passed) {
           fmt::print(text, "waveform (first {} cycles): {}\n", o.trace_window, c.trace);
         }
+        if (!c.coverage.empty()) stall_class_hit(points, source, sink);
         runs.push_back(std::move(r));
       }
     }
@@ -221,16 +236,31 @@ int run(CosimCli& c) {
   for (const CosimRun& r : runs) failed += r.report.passed ? 0 : 1;
   std::optional<CoverageSummary> coverage;
   if (!c.coverage.empty()) {
-    coverage = merge_coverage(c.coverage);
+    coverage = merge_coverage(c.coverage, line_waivers);
     const std::filesystem::path dir = c.coverage;
     fmt::print(
         text,
-        "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points), toggles {:.1f} % "
+        "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points{}), toggles {:.1f} % "
         "({} of {}); {}, {}\n",
         coverage->files, coverage->files == 1 ? "" : "s", (dir / "data").string(),
         coverage->line_percent(), coverage->line_hit, coverage->line_points,
+        coverage->line_waived == 0 ? "" : fmt::format(", {} waived", coverage->line_waived),
         coverage->toggle_percent(), coverage->toggle_hit, coverage->toggle_points,
         (dir / "coverage.info").string(), (dir / "html" / "index.html").string());
+    // Earlier commands' counts in DIR first, so the file keeps their order.
+    Coverpoints merged = Coverpoints::read(dir / "coverpoints.txt");
+    merged.merge(points);
+    merged.write(dir / "coverpoints.txt");
+    points = merged;
+    const std::vector<std::string> holes = points.holes();
+    const std::size_t waived = points.waivers().size();
+    fmt::print(
+        text, "coverpoints: {} of {} hit ({:.1f} %); {}{}{}\n", points.hit_points(), points.size(),
+        100.0 * static_cast<double>(points.hit_points()) /
+            static_cast<double>(std::max<std::size_t>(points.size(), 1)),
+        (dir / "coverpoints.txt").string(),
+        waived == 0 ? "" : fmt::format("; {} waived (unreachable, --json lists why)", waived),
+        holes.empty() ? "" : fmt::format("; never hit: {}", fmt::join(holes, ", ")));
   }
   if (json.wanted()) {
     nlohmann::ordered_json j = json_document("cosim");
@@ -244,9 +274,17 @@ int run(CosimCli& c) {
       j["coverage"] = {
           {"line_percent", coverage->line_percent()},
           {"toggle_percent", coverage->toggle_percent()},
-          {"lines", {{"hit", coverage->line_hit}, {"total", coverage->line_points}}},
+          {"lines",
+           {{"hit", coverage->line_hit},
+            {"total", coverage->line_points},
+            {"waived", coverage->line_waived}}},
           {"toggles", {{"hit", coverage->toggle_hit}, {"total", coverage->toggle_points}}},
-          {"coverpoints", nullptr},
+          {"coverpoints",
+           {{"hit", points.hit_points()},
+            {"total", points.size()},
+            {"holes", points.holes()},
+            {"waivers", points.waivers()},
+            {"file", (dir / "coverpoints.txt").string()}}},
           {"data_files", coverage->files},
           {"info", (dir / "coverage.info").string()},
           {"html", (dir / "html" / "index.html").string()}};
@@ -306,7 +344,8 @@ void add_cosim(CLI::App& app, Action& action) {
   cmd->add_option("--coverage", c->coverage,
                   "RTL line and toggle coverage: a coverage build of the plugin writes its counts "
                   "into DIR/data; every run's there so far is merged into DIR/coverage.info (lcov) "
-                  "and DIR/html (docs/verification.md)");
+                  "and DIR/html; functional coverpoints, counted on the model, into "
+                  "DIR/coverpoints.txt (docs/verification.md)");
   cmd->add_option("--junit", c->junit,
                   "write JUnit XML: one testcase per configuration x stall pattern run");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });

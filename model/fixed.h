@@ -162,10 +162,9 @@ struct Fixed {
   return {a.raw << std::max(k - a.fmt.frac_bits, 0), r};
 }
 
-// Requantize `raw` (in `from`) to `to`: align the binary point (rounding per `round` when fraction
-// bits are dropped), then handle overflow per `overflow`. Exact whenever `to` can hold the value.
-[[nodiscard]] inline std::int64_t resize_raw(std::int64_t raw, Format from, Format to, Round round,
-                                             Overflow overflow) {
+// `raw` (in `from`) aligned to `to`'s binary point, rounding per `round` when fraction bits are
+// dropped; not yet fitted to `to`'s range.
+[[nodiscard]] inline __int128 align_raw(std::int64_t raw, Format from, Format to, Round round) {
   using i128 = __int128;  // |raw| < 2^63 shifted by at most 63 bits, plus a rounding bias
   i128 v = raw;
   const int d = from.frac_bits - to.frac_bits;
@@ -185,10 +184,25 @@ struct Fixed {
     }
     v >>= d;  // arithmetic: floor
   }
+  return v;
+}
+
+// Requantize `raw` (in `from`) to `to`: align the binary point (rounding per `round` when fraction
+// bits are dropped), then handle overflow per `overflow`. Exact whenever `to` can hold the value.
+[[nodiscard]] inline std::int64_t resize_raw(std::int64_t raw, Format from, Format to, Round round,
+                                             Overflow overflow) {
+  const __int128 v = align_raw(raw, from, to, round);
   if (v >= to.min_raw() && v <= to.max_raw()) [[likely]]
     return static_cast<std::int64_t>(v);
   if (overflow == Overflow::saturate) return v < to.min_raw() ? to.min_raw() : to.max_raw();
   return from_bits(static_cast<std::uint64_t>(v), to);  // wrap: keep the low width bits
+}
+
+// Where resize_raw's rounded value falls against `to`'s range, before the overflow mode acts:
+// -1 below it (saturates low), +1 above it (saturates high), 0 inside (no overflow).
+[[nodiscard]] inline int resize_side(std::int64_t raw, Format from, Format to, Round round) {
+  const __int128 v = align_raw(raw, from, to, round);
+  return v < to.min_raw() ? -1 : v > to.max_raw() ? 1 : 0;
 }
 [[nodiscard]] inline Fixed resize(Fixed x, Format to, Round round, Overflow overflow) {
   return {resize_raw(x.raw, x.fmt, to, round, overflow), to};

@@ -91,29 +91,36 @@ LyonModel::LyonModel(const LyonFormats& formats) : f_(formats) {
   plan_ = LyonPlan(f_);
 }
 
-fx::Fixed LyonModel::rq(fx::Fixed x, fx::Format to) const {
+constexpr std::string_view kSqNames[] = {"sq_0", "sq_1", "sq_2", "sq_3"};
+
+fx::Fixed LyonModel::rq(fx::Fixed x, fx::Format to, std::string_view point,
+                        std::vector<LyonRqSide>* sides) const {
+  if (sides != nullptr)
+    sides->push_back({point, fx::resize_side(x.raw, x.fmt, to, f_.round), x.fmt, to});
   return fx::resize(x, to, f_.round, fx::Overflow::saturate);
 }
 
-LyonNormStages LyonModel::normalize(const Vec3Fx& in, fx::Format out, int order) const {
+LyonNormStages LyonModel::normalize(const Vec3Fx& in, fx::Format out, int order, bool h,
+                                    std::vector<LyonRqSide>* sides) const {
   LyonNormStages s;
+  const std::string_view out_name = h ? "hn" : "n";
   if (order == 0) {
-    for (int c = 0; c < 3; ++c) s.out[c] = rq(in[c], out);
+    for (int c = 0; c < 3; ++c) s.out[c] = rq(in[c], out, out_name, sides);
     return s;
   }
-  s.z = rq(dot3(in, in), f_.z);
-  s.y = rq(fx::sub(kOne, s.z), f_.y);
+  s.z = rq(dot3(in, in), f_.z, h ? "hn.z" : "n.z", sides);
+  s.y = rq(fx::sub(kOne, s.z), f_.y, h ? "hn.y" : "n.y", sides);
   const fx::Fixed poly = order == 1 ? s.y : fx::add(s.y, fx::mul(s.y, s.y));
-  s.g = rq(fx::add(kOne, fx::scale(poly, -1)), f_.g);
-  for (int c = 0; c < 3; ++c) s.out[c] = rq(fx::mul(s.g, in[c]), out);
+  s.g = rq(fx::add(kOne, fx::scale(poly, -1)), f_.g, h ? "hn.g" : "n.g", sides);
+  for (int c = 0; c < 3; ++c) s.out[c] = rq(fx::mul(s.g, in[c]), out, out_name, sides);
   return s;
 }
 
 LyonStages LyonModel::stages(const std::array<std::int64_t, 3>& n0,
                              const std::array<std::int64_t, 3>& n1, std::int64_t a,
                              const std::array<std::int64_t, 3>& v_raw,
-                             const std::array<std::int64_t, 3>& l_raw,
-                             std::int64_t shin_raw) const {
+                             const std::array<std::int64_t, 3>& l_raw, std::int64_t shin_raw,
+                             std::vector<LyonRqSide>* sides) const {
   LyonStages s;
   const Vec3Fx v = vec(v_raw, f_.vec);
   const Vec3Fx l = vec(l_raw, f_.vec);
@@ -124,35 +131,35 @@ LyonStages LyonModel::stages(const std::array<std::int64_t, 3>& n0,
   for (int c = 0; c < 3; ++c) {
     const fx::Fixed p0{n0[c], f_.vec};
     const fx::Fixed delta = fx::sub(fx::Fixed{n1[c], f_.vec}, p0);
-    s.np[c] = rq(fx::add(p0, fx::mul(a_fx, delta)), f_.np);
+    s.np[c] = rq(fx::add(p0, fx::mul(a_fx, delta)), f_.np, "np", sides);
   }
   // Stages 3-5: N.
-  s.n = normalize(s.np, f_.n, f_.norm);
+  s.n = normalize(s.np, f_.n, f_.norm, false, sides);
   const Vec3Fx& n = s.n.out;
   // Stage 6: diff, the diffuse term N·L (negative values saturate to 0).
-  s.diff = rq(dot3(n, l), f_.diff);
+  s.diff = rq(dot3(n, l), f_.diff, "diff", sides);
 
   // Stages 2-8: D.
   if (!f_.halfway) {
-    s.dot = rq(dot3(n, v), f_.dot);
+    s.dot = rq(dot3(n, v), f_.dot, "dot", sides);
     for (int c = 0; c < 3; ++c) {
-      s.r[c] = rq(fx::sub(fx::scale(fx::mul(s.dot, n[c]), 1), v[c]), f_.r);
-      s.d[c] = rq(fx::sub(s.r[c], l[c]), f_.d);
+      s.r[c] = rq(fx::sub(fx::scale(fx::mul(s.dot, n[c]), 1), v[c]), f_.r, "r", sides);
+      s.d[c] = rq(fx::sub(s.r[c], l[c]), f_.d, "d", sides);
     }
   } else {
-    for (int c = 0; c < 3; ++c) s.h[c] = rq(fx::scale(fx::add(l[c], v[c]), -1), f_.h);
-    s.hn = normalize(s.h, f_.h, f_.h_norm);
+    for (int c = 0; c < 3; ++c) s.h[c] = rq(fx::scale(fx::add(l[c], v[c]), -1), f_.h, "h", sides);
+    s.hn = normalize(s.h, f_.h, f_.h_norm, true, sides);
     const Vec3Fx& h = s.hn.out;
-    s.dot = rq(dot3(h, n), f_.dot);
+    s.dot = rq(dot3(h, n), f_.dot, "dot", sides);
     for (int c = 0; c < 3; ++c) {
-      s.r[c] = rq(fx::mul(s.dot, n[c]), f_.r);
-      s.d[c] = rq(fx::sub(h[c], s.r[c]), f_.d);
+      s.r[c] = rq(fx::mul(s.dot, n[c]), f_.r, "r", sides);
+      s.d[c] = rq(fx::sub(h[c], s.r[c]), f_.d, "d", sides);
     }
   }
 
   // Stages 9-10: x/2^k.
   if (f_.arrangement == 7) {
-    s.dd = rq(dot3(s.d, s.d), f_.dd);
+    s.dd = rq(dot3(s.d, s.d), f_.dd, "dd", sides);
     const fx::Fixed x2 = fx::scale(fx::mul(shin, s.dd), f_.halfway ? 2 : 0);  // 2x (n -> 4n)
     s.xk = fx::scale(x2, -(f_.k + 1));
     s.zero = at_least_one(s.xk);
@@ -161,20 +168,21 @@ LyonStages LyonModel::stages(const std::array<std::int64_t, 3>& n0,
     const int shift = (f_.k + 2) / 2;
     const int e = 2 * shift - (f_.k + 1);
     for (int c = 0; c < 3; ++c) {
-      s.dabs[c] = rq(fx::abs(s.d[c]), f_.dabs);
+      s.dabs[c] = rq(fx::abs(s.d[c]), f_.dabs, "dabs", sides);
       const fx::Fixed u = fx::scale(fx::mul(shin, s.dabs[c]), (f_.halfway ? 1 : 0) - shift);
       s.big = s.big || at_least_one(u);
-      s.w[c] = rq(u, f_.w);
+      s.w[c] = rq(u, f_.w, "w", sides);
     }
     s.xk = fx::scale(dot3(s.w, s.w), e);
     s.zero = s.big || at_least_one(s.xk);
   }
-  s.xf = rq(s.xk, f_.xf);
+  s.xf = rq(s.xk, f_.xf, "xf", sides);
 
   // Stages 11..: sq_0 = 1 - x/2^k, sq_j = sq_(j-1)², spec = f_k = sq_k, zero when x/2^k >= 1.
-  s.sq[0] = rq(fx::sub(kOne, s.xf), f_.sq);
-  for (int j = 1; j <= f_.k; ++j) s.sq[j] = rq(fx::mul(s.sq[j - 1], s.sq[j - 1]), f_.sq);
-  s.spec = s.zero ? fx::Fixed{0, f_.spec} : rq(s.sq[f_.k], f_.spec);
+  s.sq[0] = rq(fx::sub(kOne, s.xf), f_.sq, "sq_0", sides);
+  for (int j = 1; j <= f_.k; ++j)
+    s.sq[j] = rq(fx::mul(s.sq[j - 1], s.sq[j - 1]), f_.sq, kSqNames[j], sides);
+  s.spec = s.zero ? fx::Fixed{0, f_.spec} : rq(s.sq[f_.k], f_.spec, "spec", sides);
   return s;
 }
 

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
+#include <vector>
 
 #include "model/config.h"
 #include "model/fixed.h"
@@ -59,6 +61,16 @@ struct LyonStages {
   fx::Fixed spec;               // output
 };
 
+// One requantization of a pixel (LyonModel::stages with `sides`): the stage it writes (as in
+// docs/lyon.md: "np", "n.z", "n", "dot", "sq_1", ...; a vector's three components share a name)
+// and where its rounded value fell against the format's range (fx::resize_side: -1 saturated low,
+// +1 saturated high, 0 inside), with both formats.
+struct LyonRqSide {
+  std::string_view point;
+  int side = 0;
+  fx::Format from, to;  // the exact value's format and the requantized one
+};
+
 class LyonModel final : public PipelineModel {
  public:
   // Evaluates one pixel of zeros to derive every stage format, so a configuration whose
@@ -71,7 +83,8 @@ class LyonModel final : public PipelineModel {
   [[nodiscard]] LyonStages stages(const std::array<std::int64_t, 3>& n0,
                                   const std::array<std::int64_t, 3>& n1, std::int64_t a,
                                   const std::array<std::int64_t, 3>& v,
-                                  const std::array<std::int64_t, 3>& l, std::int64_t shin) const;
+                                  const std::array<std::int64_t, 3>& l, std::int64_t shin,
+                                  std::vector<LyonRqSide>* sides = nullptr) const;
 
   // Fields: inputs n0_{x,y,z} n1_{x,y,z} a v_{x,y,z} l_{x,y,z} shin; outputs spec diff.
   // Through the compiled plan (the stage path when the plan cannot be used).
@@ -88,8 +101,12 @@ class LyonModel final : public PipelineModel {
   [[nodiscard]] int latency() const { return 13 + f_.k; }
 
  private:
-  [[nodiscard]] fx::Fixed rq(fx::Fixed x, fx::Format to) const;
-  [[nodiscard]] LyonNormStages normalize(const Vec3Fx& in, fx::Format out, int order) const;
+  // rq(x, to), appending the requantization to `sides` when given.
+  [[nodiscard]] fx::Fixed rq(fx::Fixed x, fx::Format to, std::string_view point,
+                             std::vector<LyonRqSide>* sides) const;
+  // N (h false) or H (h true) normalized by `order`.
+  [[nodiscard]] LyonNormStages normalize(const Vec3Fx& in, fx::Format out, int order, bool h,
+                                         std::vector<LyonRqSide>* sides) const;
 
   LyonFormats f_;
   LyonPlan plan_;

@@ -141,7 +141,8 @@ std::size_t QuadModel::eval(std::span<const std::int64_t> in, std::vector<std::i
 }
 
 std::size_t QuadModel::walk(const QuadProgram& p, std::vector<std::int64_t>& out,
-                            std::vector<std::int64_t>* accumulators) const {
+                            std::vector<std::int64_t>* accumulators,
+                            std::vector<QuadRowTrace>* rows) const {
   if (p.y0 > p.y1) return 0;
   const fx::Format qf{true, f_.q_bits() - 1, 0};
   const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
@@ -162,9 +163,25 @@ std::size_t QuadModel::walk(const QuadProgram& p, std::vector<std::int64_t>& out
     // The row's span.
     std::int64_t lower = p.x0;
     std::int64_t upper = p.x1;
+    QuadRowTrace row{.y = y};
     for (int k = 0; k < 3; ++k) {
-      if (p.edges[k].kind == 1) lower = std::max(lower, -q[k]);
-      if (p.edges[k].kind == 2) upper = std::min(upper, q[k]);
+      if (p.edges[k].kind == 1 && -q[k] > lower) {
+        lower = -q[k];
+        row.lower_edge = k;
+        row.lower_r = r[k];
+        row.lower_d = p.edges[k].d;
+      }
+      if (p.edges[k].kind == 2 && q[k] < upper) {
+        upper = q[k];
+        row.upper_edge = k;
+        row.upper_r = r[k];
+        row.upper_d = p.edges[k].d;
+      }
+    }
+    if (rows != nullptr) {
+      row.lower = lower;
+      row.upper = upper;
+      rows->push_back(row);
     }
     if (lower <= upper) {
       const std::int64_t i0 = lower - p.x0;  // the row's first pixel, from the box's left column

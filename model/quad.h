@@ -72,6 +72,15 @@ class QuadPlan {
   std::uint64_t r_mask_ = 0;
 };
 
+// One row of a walk (QuadModel::walk with `rows`): its span (lower > upper: an empty row) and
+// which edge set each end (-1: the box's x0 or x1, no edge narrower), with that edge's DDA
+// remainder and divisor in the row.
+struct QuadRowTrace {
+  std::int64_t y = 0, lower = 0, upper = 0;
+  int lower_edge = -1, upper_edge = -1;
+  std::int64_t lower_r = 0, lower_d = 1, upper_r = 0, upper_d = 1;
+};
+
 class QuadModel final : public PipelineModel {
  public:
   explicit QuadModel(const QuadFormats& formats);
@@ -89,9 +98,11 @@ class QuadModel final : public PipelineModel {
 
   // The same from a program, operation by operation through the fixed-point core (the stage
   // path the plan is tested against); `accumulators` (optional) receives each pixel's three channel
-  // accumulator values before clamping and rounding (for the drift analysis).
+  // accumulator values before clamping and rounding (for the drift analysis); `rows` (optional)
+  // each row's span.
   std::size_t walk(const QuadProgram& p, std::vector<std::int64_t>& out,
-                   std::vector<std::int64_t>* accumulators = nullptr) const;
+                   std::vector<std::int64_t>* accumulators = nullptr,
+                   std::vector<QuadRowTrace>* rows = nullptr) const;
 
   // Program <-> input words (inputs() order).
   [[nodiscard]] static QuadProgram program(std::span<const std::int64_t> in);

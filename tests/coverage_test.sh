@@ -4,8 +4,9 @@
 # Two co-simulations of the pipeline's default configuration into one DIR: the first writes
 # DIR/coverage.info and DIR/html with line and toggle percentages in (0, 100] in its JSON; the
 # second (other seed, random stalls) merges with the first (more data files, no fewer points hit).
-# A run of a single vector into a DIR of its own reaches fewer toggles than the two together: the
-# percentages measure the vectors.
+# A run of a single vector into a DIR of its own reaches fewer toggles and fewer functional
+# coverpoints than the two together: the percentages measure the vectors. Coverpoints: hit and
+# total are numbers, DIR/coverpoints.txt holds them, and the second run keeps every point hit.
 set -uo pipefail
 phongsim="$1/phongsim"
 p=$2
@@ -16,6 +17,9 @@ fail() { echo "coverage_test $p: $*"; exit 1; }
   fail "first run: $(cat "$tmp/out")"
 cat "$tmp/out"
 grep -q "^coverage (.* data files\? in $tmp/cov/data): lines .* %" "$tmp/out" || fail "no coverage line"
+grep -q "^coverpoints: [0-9]* of [0-9]* hit (.* %); $tmp/cov/coverpoints.txt" "$tmp/out" ||
+  fail "no coverpoints line"
+[ -s "$tmp/cov/coverpoints.txt" ] || fail "no coverpoints.txt"
 [ -s "$tmp/cov/coverage.info" ] && [ -s "$tmp/cov/html/index.html" ] || fail "no coverage.info or html"
 "$phongsim" cosim "$p" --coverage "$tmp/cov" --vectors 1000 --seed 2 --backpressure random:0.5 \
   --json "$tmp/b.json" >"$tmp/out" 2>&1 || fail "second run: $(cat "$tmp/out")"
@@ -28,10 +32,17 @@ import json, sys
 a, b, c = (json.load(open(f"{sys.argv[1]}/{n}.json"))["coverage"] for n in "abc")
 for x in (a, b, c):
     assert 0 < x["line_percent"] <= 100 and 0 < x["toggle_percent"] <= 100, x
-    assert x["lines"]["total"] > 0 and x["toggles"]["total"] > 0 and x["coverpoints"] is None, x
+    assert x["lines"]["total"] > 0 and x["toggles"]["total"] > 0, x
+    p = x["coverpoints"]
+    assert type(p["hit"]) is int and type(p["total"]) is int and 0 < p["hit"] <= p["total"], p
+    assert len(p["holes"]) == p["total"] - p["hit"], p
 assert b["data_files"] > a["data_files"] and b["lines"]["total"] == a["lines"]["total"], (a, b)
 assert b["lines"]["hit"] >= a["lines"]["hit"] and b["toggles"]["hit"] >= a["toggles"]["hit"], (a, b)
 assert c["toggles"]["hit"] < b["toggles"]["hit"], (c, b)
-print("lines", a["line_percent"], b["line_percent"], c["line_percent"],
+assert b["coverpoints"]["hit"] >= a["coverpoints"]["hit"], (a, b)
+assert b["coverpoints"]["total"] == a["coverpoints"]["total"], (a, b)
+assert c["coverpoints"]["hit"] < b["coverpoints"]["hit"], (c, b)
+print("coverpoints", a["coverpoints"]["hit"], b["coverpoints"]["hit"], c["coverpoints"]["hit"],
+      "of", b["coverpoints"]["total"], "lines", a["line_percent"], b["line_percent"], c["line_percent"],
       "toggles", a["toggle_percent"], b["toggle_percent"], c["toggle_percent"])
 EOT

@@ -10,24 +10,10 @@
 #include "sim/cosim/cosim.h"
 #include "sim/cosim/harness.h"
 #include "sim/pipelines/registry.h"
+#include "tests/config_items.h"
 
 namespace phongsim {
 namespace {
-
-struct Item {
-  const PipelineInfo* pipeline;
-  std::filesystem::path config;
-};
-
-void PrintTo(const Item& it, std::ostream* os) { *os << it.config.string(); }
-
-std::vector<Item> Items() {
-  std::vector<Item> items;
-  for (const PipelineInfo& p : pipelines()) {
-    for (const auto& f : pipeline_configs(p)) items.push_back({&p, f});
-  }
-  return items;
-}
 
 class PipelineEntry : public ::testing::TestWithParam<Item> {};
 
@@ -133,7 +119,7 @@ std::string Name(const ::testing::TestParamInfo<Item>& info) {
   return std::string(info.param.pipeline->name) + "_" + info.param.config.stem().string();
 }
 
-INSTANTIATE_TEST_SUITE_P(Builtin, PipelineEntry, ::testing::ValuesIn(Items()), Name);
+INSTANTIATE_TEST_SUITE_P(Builtin, PipelineEntry, ::testing::ValuesIn(ConfigItems()), Name);
 
 }  // namespace
 }  // namespace phongsim

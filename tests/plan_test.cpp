@@ -20,6 +20,7 @@
 #include "model/plan.h"
 #include "model/quad.h"
 #include "sim/pipelines/registry.h"
+#include "tests/config_items.h"
 
 namespace phongsim {
 namespace {
@@ -91,21 +92,6 @@ TEST(Requant, WideFormatsMatchResizeRawWhereTheyFit) {
 }
 
 // ---- every configuration ----
-
-struct Item {
-  const PipelineInfo* pipeline;
-  std::filesystem::path config;
-};
-
-void PrintTo(const Item& it, std::ostream* os) { *os << it.config.string(); }
-
-std::vector<Item> Items() {
-  std::vector<Item> items;
-  for (const PipelineInfo& p : pipelines()) {
-    for (const auto& c : pipeline_configs(p)) items.push_back({&p, c});
-  }
-  return items;
-}
 
 class PlanTest : public ::testing::TestWithParam<Item> {
  protected:
@@ -237,7 +223,7 @@ std::string Name(const ::testing::TestParamInfo<Item>& info) {
   return fmt::format("{}_{}", info.param.pipeline->name, info.param.config.stem().string());
 }
 
-INSTANTIATE_TEST_SUITE_P(Configs, PlanTest, ::testing::ValuesIn(Items()), Name);
+INSTANTIATE_TEST_SUITE_P(Configs, PlanTest, ::testing::ValuesIn(ConfigItems()), Name);
 
 }  // namespace
 }  // namespace phongsim

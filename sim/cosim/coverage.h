@@ -8,14 +8,31 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 
 namespace phongsim {
+
+// Line points that cannot be reached, left out of the line figures: the points of `file` (the
+// path's end, e.g. "rtl/common/fx_resize.sv") whose statements start at lines first..last
+// (Verilator's S field: an if's arm starts at its first statement; a point without statements
+// is never waived) in every instance whose
+// hierarchy matches `hier` (an ECMAScript regex searched in Verilator's "top.lyon_top...." name),
+// with the reason. The functional coverpoints name them (CoverpointSampler::line_waivers): an
+// fx_resize saturation arm of a requantization whose saturation is waived.
+struct LineWaiver {
+  std::string hier;
+  std::string file;
+  int first_line = 0;
+  int last_line = 0;
+  std::string reason;
+};
 
 struct CoverageSummary {
   std::uint64_t files = 0;          // coverage.dat files merged
   std::uint64_t line_points = 0;    // Verilator's line and branch points (statements, if/case arms)
   std::uint64_t line_hit = 0;       // ... reached at least once
+  std::uint64_t line_waived = 0;    // points a LineWaiver leaves out of the two above
   std::uint64_t toggle_points = 0;  // one per signal bit and direction (0->1, 1->0)
   std::uint64_t toggle_hit = 0;
   [[nodiscard]] double line_percent() const;    // 100 * hit / points; 0 without points
@@ -27,7 +44,10 @@ struct CoverageSummary {
 [[nodiscard]] std::string coverage_prefix(const std::filesystem::path& dir);
 
 // Merges DIR/data/*.dat into DIR/coverage.info and DIR/html (replacing both) and counts the
-// points, each point's count summed over the files. Error when there is no file or a tool fails.
-CoverageSummary merge_coverage(const std::filesystem::path& dir);
+// points, each point's count summed over the files, the line points `waivers` match left out (the
+// lcov file and the report keep them). Error when there is no file, a tool fails, or a waived
+// point was reached (its reason is wrong).
+CoverageSummary merge_coverage(const std::filesystem::path& dir,
+                               std::span<const LineWaiver> waivers = {});
 
 }  // namespace phongsim

@@ -153,6 +153,10 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
   d.push_back(event(2, one, one, true));
   d.push_back(event(3, one, one, true));
   d.push_back(event(4095, one, one, true));
+  // An event word past the span's last pixel while the span runs: the span ends without it and
+  // the word is dropped.
+  d.push_back(header(2, 1, one / 2, one / 16, 0));
+  d.push_back(event(5, one, one, true));
   // The span's last event on its last pixel: the next header is read a cycle later.
   d.push_back(header(3, 1, one / 4, one / 32, 0));
   d.push_back(event(3, -(one / 8), 0, true));
@@ -633,6 +637,77 @@ std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_
   return s;
 }
 
+// The output's clamp to [0, 1] (low, high, neither) and requantization (saturating high: a
+// clamped 1.0 in an output without integer bits; not); programs without events and with the
+// most the header counts; spans of length 1 and of the maximum (2^12); events applied as a
+// section event (Δ²f only) and as a reload (Δf too), late (index below the current pixel), on
+// the span's last pixel, beyond the span's end, and dropped after it (docs/kb.md).
+CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
+  const KbFormats f = dynamic_cast<const KbModel&>(model).formats();
+  CoverpointSampler c;
+  const std::size_t clamp = c.points.declare("clamp.low");
+  if (f.acc.int_bits > 0) c.points.declare("clamp.high");  // else f never exceeds 1
+  c.points.declare("clamp.none");
+  const std::size_t value = c.points.declare("value.high");
+  c.points.declare("value.inside");
+  // The clamped value is never negative: the output fx_rq's `wide < MinV` arm cannot be reached.
+  c.line_waivers.push_back({R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81,
+                            "value.low: the accumulator clamped to [0, 1] is never negative"});
+  const std::size_t events = c.points.declare("program.no_events");
+  c.points.declare("program.max_events");
+  const std::size_t span = c.points.declare("span.length_1");
+  c.points.declare("span.length_max");
+  const std::size_t ev = c.points.declare("event.section");
+  for (const char* e :
+       {"event.reload", "event.late", "event.last_pixel", "event.beyond_span", "event.dropped"}) {
+    c.points.declare(e);
+  }
+  const std::int64_t max_events = (std::int64_t{1} << f.event_bits) - 1;
+  const std::int64_t max_last = (std::int64_t{1} << KbFormats::kIndexBits) - 1;
+  const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
+  const std::size_t none = f.acc.int_bits > 0 ? clamp + 2 : clamp + 1;
+  struct State {  // the engine's, mirrored: in a span, its pixel and last, events still due
+    bool running = false;
+    std::int64_t remaining = 0, i = 0, last = 0;
+  };
+  c.sample = [=, st = State{}](PipelineModel& model, std::span<const std::int64_t> in,
+                               Coverpoints& cp) mutable {
+    auto& m = dynamic_cast<KbModel&>(model);
+    if (!st.running && st.remaining == 0) {  // a header
+      st = {true, in[1], 0, in[0]};
+      if (in[1] == 0) cp.hit(events);
+      if (in[1] == max_events) cp.hit(events + 1);
+      if (in[0] == 0) cp.hit(span);
+      if (in[0] == max_last) cp.hit(span + 1);
+    } else if (!st.running) {
+      cp.hit(ev + 5);  // dropped after its span
+      --st.remaining;
+    } else {
+      if (in[0] > st.last) {
+        cp.hit(ev + 4);
+      } else {
+        cp.hit(ev + (in[5] != 0 ? 1 : 0));
+        if (in[0] < st.i) cp.hit(ev + 2);
+        if (in[0] == st.last) cp.hit(ev + 3);
+      }
+      --st.remaining;
+    }
+    std::vector<std::int64_t> acc, out;
+    m.trace_accumulator(&acc);
+    (void)m.eval(in, out);
+    m.trace_accumulator(nullptr);
+    for (std::size_t k = 0; k < acc.size(); ++k) {
+      const std::int64_t a = acc[k];
+      cp.hit(a < 0 ? clamp : a > one && f.acc.int_bits > 0 ? clamp + 1 : none);
+      const std::int64_t clamped = fx::clamp01_raw(a, f.acc);
+      cp.hit(value + (fx::resize_side(clamped, f.acc, f.out, f.out_round) > 0 ? 0 : 1));
+      ++st.i;
+      if (out[2 * k + 1] != 0) st.running = false;
+    }
+  };
+  return c;
+}
+
 // Random spans of the configuration's setup through the model, against the exact span.
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const KbFormats f = KbFormats::from_config(cfg);
@@ -789,6 +864,7 @@ const PipelineInfo& kb_pipeline() {
       .one_per_clock = true,
       .cycles = cycles,
       .stages = stages,
+      .coverpoints = coverpoints,
       .native = native,
       .contract = contract,
       .float_error = float_error,

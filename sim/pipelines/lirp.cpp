@@ -88,6 +88,23 @@ std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_
   return s;
 }
 
+// The output's requantization p = rq(sum) (the three components one point) saturating (or, with
+// out_overflow wrap, wrapping) low, high and not.
+CoverpointSampler coverpoints(const PipelineModel& model, const Config& cfg) {
+  const LirpFormats f = LirpFormats::from_config(cfg);
+  const LirpModel& m = dynamic_cast<const LirpModel&>(model);
+  CoverpointSampler c;
+  const auto p = c.points.declare_sides("p", m.component(0, 0, 0).sum.fmt, f.out, f.out_round);
+  c.sample = [f, p](PipelineModel& model, std::span<const std::int64_t> in, Coverpoints& points) {
+    const auto& m = dynamic_cast<const LirpModel&>(model);
+    for (int c = 0; c < 3; ++c) {
+      const fx::Fixed sum = m.component(in[c], in[3 + c], in[6]).sum;
+      points.hit_side(p, fx::resize_side(sum.raw, sum.fmt, f.out, f.out_round));
+    }
+  };
+  return c;
+}
+
 // configs/lirp/default.toml by hand: p S1.10, a 1.10, out S1.10, half_even, saturate. delta S2.10,
 // prod = a·delta S3.20, sum = (p0 << 10) + prod S4.20, p = rq(sum) dropping 10 bits.
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
@@ -246,6 +263,7 @@ const PipelineInfo& lirp_pipeline() {
       .one_per_clock = true,
       .cycles = one_per_clock<latency>,
       .stages = stages,
+      .coverpoints = coverpoints,
       .native = native,
       .contract = contract,
       .float_error = lirp_float_error,

@@ -93,6 +93,8 @@ Stimulus make_lyon_stimulus(const PipelineModel& model) {
       if (fig8) directed.push_back(pixel(up, up, 0.0, up, l, std::floor(std::sqrt(n))));
     }
   }
+  // A zero normal: N'·N' = 0, so y = 1 - z = 1 saturates y (S0.x stops below 1).
+  directed.push_back(pixel(Vec3{0, 0, 0}, Vec3{0, 0, 0}, 0.0, up, up, 1.0));
   // Unnormalized N': endpoints 90 degrees apart interpolated at a = 1/2 (length cos 45° = 0.71),
   // and short endpoints (length 0.7) with a = 0 and 1.
   const Vec3 side{1, 0, 0};
@@ -486,6 +488,208 @@ std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_
   return s;
 }
 
+// Waives the outcomes the formats allow but the arithmetic before them rules out, each with the
+// bound that rules it out (docs/verification.md, "Waivers"). A wrong reason shows: hitting a
+// waived point is an error.
+// The instance (a regex on Verilator's hierarchy under lyon_top) computing requantization
+// `point` (docs/lyon.md's stage names; "" for none).
+std::string rtl_instance(const std::string& point) {
+  static const std::pair<std::string_view, std::string_view> kInstances[] = {
+      {"n.z", R"(\.u_norm_n\..*\.u_z\.)"},
+      {"n.y", R"(\.u_norm_n\..*\.u_y\.)"},
+      {"n.g", R"(\.u_norm_n\..*\.u_g\.)"},
+      {"n", R"(\.u_norm_n\..*\.u_out\.)"},
+      {"hn.z", R"(\.u_norm_h\..*\.u_z\.)"},
+      {"hn.y", R"(\.u_norm_h\..*\.u_y\.)"},
+      {"hn.g", R"(\.u_norm_h\..*\.u_g\.)"},
+      {"hn", R"(\.u_norm_h\..*\.u_out\.)"},
+      {"h", R"(\.u_h\.)"},
+      {"dd", R"(\.u_dd\.)"},
+      {"sq_0", R"(\.u_sq_0\.)"},
+      {"spec", R"(\.u_spec\.)"},
+      {"np", R"(\.u_lirp\..*u_round)"},
+      {"diff", R"(\.u_diff\.)"},
+      {"dot", R"(\.u_dot\.)"},
+      {"r", R"(\.u_r\.)"},
+      {"d", R"(\.u_d\.)"},
+      {"dabs", R"(\.u_dabs\.)"},
+      {"w", R"(\.u_w\.)"},
+      {"xf", R"(\.u_xf\.)"}};
+  for (const auto& [name, re] : kInstances) {
+    if (point == name) return std::string(re);
+  }
+  // sq_1 ... sq_k: one generate loop, one instance name (Verilator writes the index as [*]).
+  if (point.rfind("sq_", 0) == 0) return R"(\.u_sq_j\.)";
+  return "";
+}
+
+// For outcome `name` of a requantization ("n.z.low", "dd.high"): the saturation arm of its
+// fx_resize (rtl/common/fx_resize.sv: `wide > MaxV` at line 78, `wide < MinV` at 80) as an RTL
+// line waiver.
+void waive_line(CoverpointSampler& c, const std::string& name, const std::string& reason) {
+  const auto dot = name.rfind('.');
+  const std::string point = name.substr(0, dot), side = name.substr(dot + 1);
+  const std::string instance = rtl_instance(point);
+  if (instance.empty() || (side != "low" && side != "high")) return;
+  const int line = side == "high" ? 78 : 80;
+  c.line_waivers.push_back(
+      {instance, "rtl/common/fx_resize.sv", line, line + 1, name + ": " + reason});
+}
+
+void waive_unreachable(const LyonFormats& f, CoverpointSampler& c) {
+  // Waives outcome `name` ("n.z.low") and its RTL saturation arm.
+  const auto waive = [&c](const std::string& name, const std::string& reason) {
+    c.points.waive(name, reason);
+    waive_line(c, name, reason);
+  };
+  const fx::Fixed one{1, fx::Format{false, 1, 0}};
+  const auto side = [&f](fx::Fixed v, fx::Format to) {
+    return fx::resize_side(v.raw, v.fmt, to, f.round);
+  };
+  const auto rq = [&f](fx::Fixed v, fx::Format to) {
+    return fx::resize(v, to, f.round, fx::Overflow::saturate);
+  };
+  const auto top = [](fx::Format fmt) { return fx::Fixed{fmt.max_raw(), fmt}; };
+  const auto real = [](fx::Fixed v) { return fmt::format("{}", fx::to_real(v.raw, v.fmt)); };
+  for (const char* p : {"n.z.low", "hn.z.low", "dd.low"}) {
+    waive(p, "a sum of squares is never negative");
+  }
+  // The normalization: z in [0, max z], so y = rq(1 - z) in [y_lo, y_hi]; g = 1 + poly(y)/2 rises
+  // with y from y = -1/2 on (poly = y + y^2 is at least -1/4), and g1's poly = y always.
+  const fx::Fixed y_lo = rq(fx::sub(one, top(f.z)), f.y);
+  const fx::Fixed y_hi = rq(one, f.y);
+  const int norms[] = {f.norm, f.halfway ? f.h_norm : 0};
+  const char* names[] = {"n", "hn"};
+  const fx::Format ins[] = {f.np, f.h};
+  const fx::Format outs[] = {f.n, f.h};
+  for (int v = 0; v < 2; ++v) {
+    if (norms[v] == 0) continue;
+    const std::string n = names[v];
+    if (side(fx::sub(one, top(f.z)), f.y) >= 0) {
+      waive(n + ".y.low", "y = 1 - z >= 1 - max z = " + real(fx::sub(one, top(f.z))));
+    }
+    const auto g_of = [&](fx::Fixed y) {
+      const fx::Fixed poly = norms[v] == 1 ? y : fx::add(y, fx::mul(y, y));
+      return fx::add(one, fx::scale(poly, -1));
+    };
+    const fx::Fixed g_hi = g_of(y_hi);
+    if (side(g_hi, f.g) <= 0) waive(n + ".g.high", "g <= g(max y) = " + real(g_hi));
+    const double y_min = fx::to_real(y_lo.raw, y_lo.fmt);
+    const fx::Fixed g_lo = norms[v] == 2 && y_min < -0.5
+                               ? fx::add(one, fx::Fixed{-1, fx::Format{true, 0, 3}})
+                               : g_of(y_lo);
+    if (side(g_lo, f.g) >= 0) waive(n + ".g.low", "g >= " + real(g_lo));
+    // z >= 1 makes y <= 0 and (y >= -1) g <= 1: |g N'_c| <= |N'_c|; z < 1 makes |N'_c| < 1 and
+    // g |N'_c| at most about 1.002 (g2; 1 for g1): inside an output that holds N' and 1.
+    const fx::Format in = ins[v], out = outs[v];
+    if (y_min >= -1 && out.is_signed && out.int_bits >= std::max(in.int_bits, 1) &&
+        out.frac_bits >= in.frac_bits) {
+      const std::string why =
+          fmt::format("|g N'_c| stays within {} (z >= 1: g <= 1) or near 1 (z < 1), which {} holds",
+                      in.str(), out.str());
+      waive(n + ".low", why);
+      waive(n + ".high", why);
+    }
+  }
+  // H = (L + V)/2 lies between the smallest and the largest vector component.
+  if (side(top(f.vec), f.h) <= 0) {
+    waive("h.high", "(L + V)/2 <= max component " + real(top(f.vec)) + ", which h holds");
+  }
+  if (side(fx::Fixed{f.vec.min_raw(), f.vec}, f.h) >= 0) {
+    waive("h.low", "(L + V)/2 >= min component, which h holds");
+  }
+  // The shape function: xf in [0, max xf], sq_0 = rq(1 - xf) at most rq(1), squares of values
+  // at most 1 no larger.
+  if (side(fx::sub(one, top(f.xf)), f.sq) >= 0) {
+    waive("sq_0.low", "1 - xf >= 1 - max xf = " + real(fx::sub(one, top(f.xf))));
+  }
+  const fx::Fixed s_hi = rq(one, f.sq);
+  if (!f.xf.is_signed && side(one, f.sq) <= 0) {
+    waive("sq_0.high", "1 - xf <= 1, which sq holds");
+  }
+  if (fx::to_real(s_hi.raw, s_hi.fmt) <= 1 && side(fx::mul(s_hi, s_hi), f.sq) <= 0) {
+    for (int j = 1; j <= f.k; ++j) {
+      waive(fmt::format("sq_{}.high", j), "the square of a value in [0, 1] is in [0, 1]");
+    }
+  }
+  if (side(s_hi, f.spec) <= 0) {
+    waive("spec.high", "sq_k <= " + real(s_hi) + ", which spec holds");
+  }
+  if (f.arrangement == 8 && f.k % 2 == 1) {
+    waive("compare.equal",
+          "x/2^k = w_x^2 + w_y^2 + w_z^2 with binary fractions w_c < 1: 4^m is a sum of "
+          "three squares only as (2^m)^2 + 0 + 0, so x/2^k is never exactly 1");
+  }
+}
+
+// Every requantization the configuration has (docs/lyon.md's stage table: a vector's components
+// one point) saturating low, high and not; the zero flag set and clear, and near the comparator
+// x/2^k >= 1: exactly 1, within 2^-8 below and above; arrangement 8's big flag set and clear; the
+// normalization (order 1 or 2) correcting a length (g != 1); the output through the k squarings
+// (not zeroed, sq_k > 0).
+CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
+  const auto& m = dynamic_cast<const LyonModel&>(model);
+  const LyonFormats f = m.formats();
+  CoverpointSampler c;
+  std::vector<LyonRqSide> sides;
+  (void)m.stages({0, 0, 0}, {0, 0, 0}, 0, {0, 0, 0}, {0, 0, 0}, 0, &sides);
+  std::vector<std::string_view> points;  // the requantizations, each once, in stage order
+  std::vector<Coverpoints::Sides> first;
+  for (const LyonRqSide& s : sides) {
+    if (std::find(points.begin(), points.end(), s.point) != points.end()) continue;
+    points.push_back(s.point);
+    first.push_back(c.points.declare_sides(std::string(s.point), s.from, s.to, f.round));
+    // The outcomes the formats rule out have no coverpoint; their RTL arms are waived.
+    const std::string why = fmt::format("{} rounded into {} cannot", s.from.str(), s.to.str());
+    if (first.back().low == Coverpoints::kNone) {
+      waive_line(c, std::string(s.point) + ".low", why + " go below it");
+    }
+    if (first.back().high == Coverpoints::kNone) {
+      waive_line(c, std::string(s.point) + ".high", why + " go above it");
+    }
+  }
+  const std::size_t zero = c.points.declare("zero.set");
+  c.points.declare("zero.clear");
+  const std::size_t cmp = c.points.declare("compare.equal");
+  c.points.declare("compare.just_below");
+  c.points.declare("compare.just_above");
+  const bool fig8 = f.arrangement == 8;
+  const std::size_t big = fig8 ? c.points.declare("big.set") : 0;
+  if (fig8) c.points.declare("big.clear");
+  std::vector<std::size_t> norm;  // N's, then H's (halfway)
+  if (f.norm > 0) norm.push_back(c.points.declare(fmt::format("norm.n.g{}", f.norm)));
+  if (f.halfway && f.h_norm > 0) {
+    norm.push_back(c.points.declare(fmt::format("norm.hn.g{}", f.h_norm)));
+  }
+  const std::size_t shape = c.points.declare(fmt::format("shape.k{}", f.k));
+  waive_unreachable(f, c);
+  c.sample = [=](PipelineModel& model, std::span<const std::int64_t> in, Coverpoints& cp) {
+    const auto& lm = dynamic_cast<const LyonModel&>(model);
+    std::vector<LyonRqSide> s;
+    const LyonStages st = lm.stages({in[0], in[1], in[2]}, {in[3], in[4], in[5]}, in[6],
+                                    {in[7], in[8], in[9]}, {in[10], in[11], in[12]}, in[13], &s);
+    for (const LyonRqSide& r : s) {
+      const auto at = std::find(points.begin(), points.end(), r.point) - points.begin();
+      cp.hit_side(first[static_cast<std::size_t>(at)], r.side);
+    }
+    cp.hit(zero + (st.zero ? 0 : 1));
+    // x/2^k against 1, exactly: raw against 2^frac.
+    const std::int64_t one = std::int64_t{1} << st.xk.fmt.frac_bits;
+    const std::int64_t near = std::int64_t{1} << std::max(0, st.xk.fmt.frac_bits - 8);
+    if (st.xk.raw == one) cp.hit(cmp);
+    if (st.xk.raw < one && st.xk.raw >= one - near) cp.hit(cmp + 1);
+    if (st.xk.raw > one && st.xk.raw <= one + near) cp.hit(cmp + 2);
+    if (fig8) cp.hit(big + (st.big ? 0 : 1));
+    const std::int64_t g_one = std::int64_t{1} << f.g.frac_bits;
+    std::size_t j = 0;
+    if (f.norm > 0 && st.n.g.raw != g_one) cp.hit(norm[j]);
+    if (f.norm > 0) ++j;
+    if (f.halfway && f.h_norm > 0 && st.hn.g.raw != g_one) cp.hit(norm[j]);
+    if (!st.zero && st.sq[f.k].raw > 0) cp.hit(shape);
+  };
+  return c;
+}
+
 ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const LyonModel model(LyonFormats::from_config(cfg));
   const LyonOutputError l = lyon_output_error(model, samples, seed, /*exact_inputs=*/true);
@@ -618,6 +822,7 @@ const PipelineInfo& lyon_pipeline() {
       .one_per_clock = true,
       .cycles = one_per_clock<latency>,
       .stages = stages,
+      .coverpoints = coverpoints,
       .native = native,
       .contract =
           [](const PipelineModel& model, const Config&) {

@@ -17,6 +17,7 @@
 #include "model/config.h"
 #include "model/pipeline.h"
 #include "sim/cosim/contract.h"
+#include "sim/cosim/coverpoints.h"
 #include "sim/cosim/frame_cycles.h"
 #include "sim/cosim/report.h"
 #include "sim/cosim/rtl_plugin.h"
@@ -112,6 +113,12 @@ struct PipelineInfo {
                         std::vector<FrameCycles>* per_vector);
   // Every stage value of one input vector (evaluated like eval(): stateful models advance).
   std::vector<StageValue> (*stages)(PipelineModel& model, std::span<const std::int64_t> in);
+  // The functional coverpoints of `cfg` (sim/cosim/coverpoints.h, docs/verification.md): each
+  // requantization saturating low, high and not, and the pipeline's corner events, declared for
+  // what the configuration uses and counted on the model, vector by vector. `phongsim cosim
+  // --coverage` counts them over its runs; tests/coverpoint_test.cpp checks that the stimulus
+  // hits every one.
+  CoverpointSampler (*coverpoints)(const PipelineModel& model, const Config& cfg);
 
   // A hand-written kernel of configs/<name>/default.toml, its widths and modes as constants (no
   // runtime formats): `phongsim bench`'s yardstick for the model, run on every configuration with
