@@ -59,16 +59,25 @@ TEST_P(PipelineEntry, MeasuredLatencyAndRateAreTheEntrys) {
   o.directed = false;
   o.random_vectors = 0;
   o.measure_vectors = 2000;
-  const CosimReport r =
-      cosim({std::string(it.pipeline->name), cfg, *model, stimulus,
-             it.pipeline->independent_vectors, [&]() { return library->create(*model); }},
-            o);
+  const CosimReport r = cosim({std::string(it.pipeline->name),
+                               cfg,
+                               *model,
+                               stimulus,
+                               it.pipeline->independent_vectors,
+                               [&]() { return library->create(*model); },
+                               {},
+                               {},
+                               0,
+                               {}},
+                              o);
   ASSERT_TRUE(r.passed) << r.failure;
   EXPECT_EQ(r.latency_min, static_cast<std::uint64_t>(it.pipeline->latency(cfg)));
   if (it.pipeline->one_per_clock) {
     EXPECT_EQ(r.throughput, 1.0);
     // Every vector takes the same path (a span program's words wait their turn, so not kb's).
-    if (it.pipeline->independent_vectors) EXPECT_EQ(r.latency_max, r.latency_min);
+    if (it.pipeline->independent_vectors) {
+      EXPECT_EQ(r.latency_max, r.latency_min);
+    }
   } else {
     EXPECT_LT(r.throughput, 1.0);
   }

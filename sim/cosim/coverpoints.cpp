@@ -179,4 +179,25 @@ void stall_class_hit(Coverpoints& points, const StallPattern& source, const Stal
   points.hit("stall.sink." + kind(sink));
 }
 
+Clamp01Output::Clamp01Output(CoverpointSampler& sampler, fx::Format acc, fx::Format out,
+                             fx::Round round)
+    : acc_(acc), out_(out), round_(round) {
+  clamp_ = sampler.points.declare("clamp.low");
+  if (acc.int_bits > 0) sampler.points.declare("clamp.high");
+  sampler.points.declare("clamp.none");
+  value_ = sampler.points.declare("value.high");
+  sampler.points.declare("value.inside");
+  sampler.line_waivers.push_back(
+      {R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81,
+       "value.low: the accumulator clamped to [0, 1] is never negative"});
+}
+
+void Clamp01Output::hit(Coverpoints& points, std::int64_t acc_raw) const {
+  const std::int64_t one = std::int64_t{1} << acc_.frac_bits;
+  const bool high = acc_.int_bits > 0 && acc_raw > one;
+  points.hit(clamp_ + (acc_raw < 0 ? 0 : high ? 1 : acc_.int_bits > 0 ? 2 : 1));
+  const std::int64_t clamped = fx::clamp01_raw(acc_raw, acc_);
+  points.hit(value_ + (fx::resize_side(clamped, acc_, out_, round_) > 0 ? 0 : 1));
+}
+
 }  // namespace phongsim

@@ -91,6 +91,23 @@ struct CoverpointSampler {
       sample;
 };
 
+// The output stage kb's engine and quad's channels share (fx_clamp01 of the accumulator, then
+// fx_rq to the output format): the clamp's outcomes `clamp.low`, `clamp.high` (declared only
+// when `acc` has integer bits: else it never exceeds 1) and `clamp.none`, and the
+// requantization's `value.high` and `value.inside`; its low arm cannot be reached by a clamped
+// value, so `sampler`'s line waivers get the rq's low-saturation lines of instance `u_value`.
+class Clamp01Output {
+ public:
+  Clamp01Output(CoverpointSampler& sampler, fx::Format acc, fx::Format out, fx::Round round);
+  // Counts one accumulator value's clamp and requantization.
+  void hit(Coverpoints& points, std::int64_t acc_raw) const;
+
+ private:
+  fx::Format acc_, out_;
+  fx::Round round_;
+  std::size_t clamp_ = 0, value_ = 0;
+};
+
 // The vectors a co-simulation runs (Stimulus::vector: the directed ones when `directed`, then
 // `random` from `seed`; only `only_index` when given) counted into `sampler.points` through a
 // copy of `model` reset first.

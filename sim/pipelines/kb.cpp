@@ -645,14 +645,7 @@ std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_
 CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
   const KbFormats f = dynamic_cast<const KbModel&>(model).formats();
   CoverpointSampler c;
-  const std::size_t clamp = c.points.declare("clamp.low");
-  if (f.acc.int_bits > 0) c.points.declare("clamp.high");  // else f never exceeds 1
-  c.points.declare("clamp.none");
-  const std::size_t value = c.points.declare("value.high");
-  c.points.declare("value.inside");
-  // The clamped value is never negative: the output fx_rq's `wide < MinV` arm cannot be reached.
-  c.line_waivers.push_back({R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81,
-                            "value.low: the accumulator clamped to [0, 1] is never negative"});
+  const Clamp01Output output(c, f.acc, f.out, f.out_round);
   const std::size_t events = c.points.declare("program.no_events");
   c.points.declare("program.max_events");
   const std::size_t span = c.points.declare("span.length_1");
@@ -664,8 +657,6 @@ CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
   }
   const std::int64_t max_events = (std::int64_t{1} << f.event_bits) - 1;
   const std::int64_t max_last = (std::int64_t{1} << KbFormats::kIndexBits) - 1;
-  const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
-  const std::size_t none = f.acc.int_bits > 0 ? clamp + 2 : clamp + 1;
   struct State {  // the engine's, mirrored: in a span, its pixel and last, events still due
     bool running = false;
     std::int64_t remaining = 0, i = 0, last = 0;
@@ -697,10 +688,7 @@ CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
     (void)m.eval(in, out);
     m.trace_accumulator(nullptr);
     for (std::size_t k = 0; k < acc.size(); ++k) {
-      const std::int64_t a = acc[k];
-      cp.hit(a < 0 ? clamp : a > one && f.acc.int_bits > 0 ? clamp + 1 : none);
-      const std::int64_t clamped = fx::clamp01_raw(a, f.acc);
-      cp.hit(value + (fx::resize_side(clamped, f.acc, f.out, f.out_round) > 0 ? 0 : 1));
+      output.hit(cp, acc[k]);
       ++st.i;
       if (out[2 * k + 1] != 0) st.running = false;
     }

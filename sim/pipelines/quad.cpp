@@ -498,14 +498,7 @@ std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_
 CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
   const QuadFormats f = dynamic_cast<const QuadModel&>(model).formats();
   CoverpointSampler c;
-  const std::size_t clamp = c.points.declare("clamp.low");
-  c.points.declare("clamp.high");
-  c.points.declare("clamp.none");
-  const std::size_t value = c.points.declare("value.high");
-  c.points.declare("value.inside");
-  // The clamped value is never negative: the output fx_rq's `wide < MinV` arm cannot be reached.
-  c.line_waivers.push_back({R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81,
-                            "value.low: the accumulator clamped to [0, 1] is never negative"});
+  const Clamp01Output output(c, f.acc, f.out, f.out_round);
   const std::size_t shape = c.points.declare("program.no_rows");
   c.points.declare("program.one_pixel");
   c.points.declare("row.empty");
@@ -521,7 +514,6 @@ CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
   c.line_waivers.push_back({R"(\.quad_walker$)", "rtl/quad/quad_walker.sv", 137, 138,
                             "bound.{lower,upper}.edge: the narrowing compares in an unrolled "
                             "always_comb loop, which Verilator's line coverage does not count"});
-  const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
   c.sample = [=](PipelineModel& model, std::span<const std::int64_t> in, Coverpoints& cp) {
     const auto& m = dynamic_cast<const QuadModel&>(model);
     const QuadProgram p = QuadModel::program(in);
@@ -541,11 +533,7 @@ CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
       end(bound, row.lower_edge, row.lower_r, row.lower_d);
       end(bound + 3, row.upper_edge, row.upper_r, row.upper_d);
     }
-    for (const std::int64_t a : acc) {
-      cp.hit(clamp + (a < 0 ? 0 : a > one ? 1 : 2));
-      const std::int64_t clamped = fx::clamp01_raw(a, f.acc);
-      cp.hit(value + (fx::resize_side(clamped, f.acc, f.out, f.out_round) > 0 ? 0 : 1));
-    }
+    for (const std::int64_t a : acc) output.hit(cp, a);
   };
   return c;
 }
