@@ -123,6 +123,35 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
   return n;
 }
 
+// One vector's outputs against p0 + a·(p1 - p0) on the exact reals (p, a) it was quantized from,
+// clamped to the output range, added to `tally` in output LSBs.
+class FloatCheck {
+ public:
+  explicit FloatCheck(const LirpFormats& f)
+      : f_(f),
+        model_(f),
+        lsb_(std::ldexp(1.0, -f.out.frac_bits)),
+        lo_(fx::to_real(f.out.min_raw(), f.out)),
+        hi_(fx::to_real(f.out.max_raw(), f.out)) {}
+
+  [[nodiscard]] LirpModel& model() { return model_; }
+
+  void add(std::span<const std::int64_t> v, const double (&p)[6], double a, ErrorTally& tally) {
+    result_.clear();
+    (void)model_.eval(v, result_);
+    for (int c = 0; c < 3; ++c) {
+      const double exact = std::clamp(lirp::lirp(p[c], p[3 + c], a), lo_, hi_);
+      tally.add(std::abs(fx::to_real(result_[static_cast<std::size_t>(c)], f_.out) - exact), lsb_);
+    }
+  }
+
+ private:
+  LirpFormats f_;
+  LirpModel model_;
+  double lsb_, lo_, hi_;
+  std::vector<std::int64_t> result_;
+};
+
 // The model against p0 + a·(p1 - p0) on exact reals clamped to the output range (the model sees
 // them quantized), in output LSBs, over vectors whose first broken clause is `clause`
 // (InputContract::kIn: inside the contract). Inside: components uniform over the contract's
@@ -131,19 +160,15 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
 ModelError lirp_contract_error(const Config& cfg, int clause, std::uint64_t samples,
                                std::uint64_t seed) {
   const LirpFormats f = LirpFormats::from_config(cfg);
-  LirpModel model(f);
-  InputContract contract = lirp_pipeline().contract(model, cfg);
-  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
-  const double lo = fx::to_real(f.out.min_raw(), f.out);
-  const double hi = fx::to_real(f.out.max_raw(), f.out);
+  FloatCheck check(f);
+  InputContract contract = lirp_pipeline().contract(check.model(), cfg);
   const double p_lo = f.p.is_signed ? -1.0 : 0.0;
   const double p_min = fx::to_real(f.p.min_raw(), f.p), p_max = fx::to_real(f.p.max_raw(), f.p);
   const double a_max = fx::to_real(f.a.max_raw(), f.a);
   const auto q = [](double x, fx::Format fmt) {
     return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
   };
-  std::vector<std::int64_t> v(model.inputs().size());
-  std::vector<std::int64_t> result;
+  std::vector<std::int64_t> v(check.model().inputs().size());
   ErrorTally tally;
   std::uint64_t vectors = 0;
   for (std::uint64_t i = 0; vectors < samples && i < 50 * samples; ++i) {
@@ -157,13 +182,7 @@ ModelError lirp_contract_error(const Config& cfg, int clause, std::uint64_t samp
     v[6] = q(a, f.a);
     if (contract.check(v) != clause) continue;
     ++vectors;
-    result.clear();
-    (void)model.eval(v, result);
-    for (int c = 0; c < 3; ++c) {
-      const double exact = std::clamp(lirp::lirp(p[c], p[3 + c], a), lo, hi);
-      const double d = std::abs(fx::to_real(result[static_cast<std::size_t>(c)], f.out) - exact);
-      tally.add(d, lsb);
-    }
+    check.add(v, p, a, tally);
   }
   return tally.result();
 }
@@ -215,16 +234,12 @@ void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64
 
 ModelError lirp_float_error(const Config& cfg, std::uint64_t samples, std::uint64_t seed) {
   const LirpFormats f = LirpFormats::from_config(cfg);
-  LirpModel model(f);
+  FloatCheck check(f);
   ErrorTally tally;
-  const double lsb = std::ldexp(1.0, -f.out.frac_bits);
-  const double lo = fx::to_real(f.out.min_raw(), f.out);
-  const double hi = fx::to_real(f.out.max_raw(), f.out);
   const auto q = [](double x, fx::Format fmt) {
     return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
   };
-  std::vector<std::int64_t> v(model.inputs().size());
-  std::vector<std::int64_t> result;
+  std::vector<std::int64_t> v(check.model().inputs().size());
   for (std::uint64_t i = 0; i < samples; ++i) {
     Rng rng(seed, kStimulusStream, i);
     double p[6];
@@ -234,13 +249,7 @@ ModelError lirp_float_error(const Config& cfg, std::uint64_t samples, std::uint6
     }
     const double a = rng.uniform();
     v[6] = q(a, f.a);
-    result.clear();
-    (void)model.eval(v, result);
-    for (int c = 0; c < 3; ++c) {
-      const double exact = std::clamp(lirp::lirp(p[c], p[3 + c], a), lo, hi);
-      const double d = std::abs(fx::to_real(result[static_cast<std::size_t>(c)], f.out) - exact);
-      tally.add(d, lsb);
-    }
+    check.add(v, p, a, tally);
   }
   return tally.result();
 }
