@@ -283,6 +283,12 @@ EOT
     PHONGSIM_VERILATOR_FLAGS="--output-split 500" expect_error \
       'not built for its current content.*PHONGSIM_VERILATOR_FLAGS changed: now "--output-split 500"' \
       run --no-build
+    # ... but never one that would change the design the verdict names.
+    PHONGSIM_VERILATOR_FLAGS="-O3 -GOutRound=0" expect_error \
+      'PHONGSIM_VERILATOR_FLAGS: -GOutRound=0 would change the design' run --no-build
+    PHONGSIM_VERILATOR_FLAGS="-CFLAGS -DNDEBUG" run --no-build >"$tmp/cflags" 2>&1
+    grep -q "PHONGSIM_VERILATOR_FLAGS changed" "$tmp/cflags" ||
+      fail "a C++ -D after -CFLAGS was refused: $(cat "$tmp/cflags")"
     # A plugin file given by hand is refused once a file it was built from changed.
     plugin=$("$phongsim" build-rtl lirp --rtl "$tmp/rtl/common" "$tmp/rtl/lirp" | sed -n 's/.*: \(.*plugin.so\)$/\1/p')
     [ -s "$plugin" ] || fail "build-rtl printed no plugin path"

@@ -36,11 +36,28 @@ const std::vector<std::string> kVerilatorCoverageFlags = {"--coverage-line", "--
 // $PHONGSIM_VERILATOR_FLAGS: extra Verilator arguments, split at white space, appended to every
 // plugin's (so part of its key), e.g. "--threads 2" or "-CFLAGS -march=native"; how the defaults
 // were chosen is in docs/performance.md.
+// Arguments that would change the design itself (parameters, macros, sources, the top) are
+// refused: those come from the configuration and --rtl, and a verdict must describe them.
 std::vector<std::string> extra_verilator_flags() {
   std::vector<std::string> flags;
   const char* env = std::getenv("PHONGSIM_VERILATOR_FLAGS");
   std::istringstream words(env ? env : "");
-  for (std::string w; words >> w;) flags.push_back(w);
+  bool value = false;  // the word after -CFLAGS or -LDFLAGS is the compiler's, not Verilator's
+  for (std::string w; words >> w;) {
+    const bool design =
+        !value && (w.starts_with("-G") || w.starts_with("-pvalue") || w.starts_with("+define+") ||
+                   w.starts_with("-D") || w.starts_with("+incdir+") || w.starts_with("-I") ||
+                   w == "-f" || w == "-F" || w == "-v" || w == "-y" || w.starts_with("--top") ||
+                   w.ends_with(".sv") || w.ends_with(".v") || w.ends_with(".svh"));
+    if (design) {
+      throw Error(fmt::format(
+          "PHONGSIM_VERILATOR_FLAGS: {} would change the design (its parameters, macros, sources "
+          "and top come from the configuration and --rtl)",
+          w));
+    }
+    value = !value && (w == "-CFLAGS" || w == "-LDFLAGS");
+    flags.push_back(w);
+  }
   return flags;
 }
 
