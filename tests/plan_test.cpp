@@ -19,6 +19,8 @@
 #include "model/lyon.h"
 #include "model/plan.h"
 #include "model/quad.h"
+#include "model/shade_lyon.h"
+#include "model/shade_quad.h"
 #include "sim/pipelines/registry.h"
 #include "tests/config_items.h"
 
@@ -200,6 +202,24 @@ TEST_P(PlanTest, PlanEqualsStagePath) {
       (void)kb_stages->eval(in, want);
     } else if (const auto* quad = dynamic_cast<const QuadModel*>(model_.get())) {
       (void)quad->walk(QuadModel::program(in), want);
+    } else if (const auto* sq = dynamic_cast<const ShadeQuadModel*>(model_.get())) {
+      // The walker's stage path, the triangle's number after x and y.
+      std::vector<std::int64_t> px;
+      const std::size_t n = sq->walker().walk(QuadModel::program(in.first(40)), px);
+      for (std::size_t j = 0; j < 5 * n; j += 5) {
+        want.insert(want.end(), {px[j], px[j + 1], in[40], px[j + 2], px[j + 3], px[j + 4]});
+      }
+    } else if (const auto* sl = dynamic_cast<const ShadeLyonModel*>(model_.get())) {
+      // The walker's stage path, N' = C - 2^F, Lyon's stage path with N0 = N1 = N', a = 0.
+      std::vector<std::int64_t> px;
+      const std::size_t n = sl->walker().walk(QuadModel::program(in.first(40)), px);
+      const std::int64_t half = std::int64_t{1} << sl->formats().lyon.vec.frac_bits;
+      for (std::size_t j = 0; j < 5 * n; j += 5) {
+        const std::array<std::int64_t, 3> np{px[j + 2] - half, px[j + 3] - half, px[j + 4] - half};
+        const LyonStages st = sl->lyon().stages(np, np, 0, {in[40], in[41], in[42]},
+                                                {in[43], in[44], in[45]}, in[46]);
+        want.insert(want.end(), {px[j], px[j + 1], in[47], st.spec.raw, st.diff.raw});
+      }
     }
     const std::size_t k = (want.size() - before) / n_out;
     ASSERT_EQ(counts[i], k) << name_ << ": seed " << kSeed << " vector " << i;

@@ -185,8 +185,16 @@ Clamp01Output::Clamp01Output(CoverpointSampler& sampler, fx::Format acc, fx::For
   clamp_ = sampler.points.declare("clamp.low");
   if (acc.int_bits > 0) sampler.points.declare("clamp.high");
   sampler.points.declare("clamp.none");
-  value_ = sampler.points.declare("value.high");
-  sampler.points.declare("value.inside");
+  // 1 (or the largest accumulator value below it) saturates high unless the output holds it.
+  const std::int64_t top = fx::clamp01_raw(acc.max_raw(), acc);
+  if (fx::resize_side(top, acc, out, round) > 0) {
+    value_high_ = sampler.points.declare("value.high");
+  } else {
+    sampler.line_waivers.push_back(
+        {R"(\.u_value\.)", "rtl/common/fx_resize.sv", 78, 79,
+         "value.high: the accumulator clamped to [0, 1] fits " + out.str()});
+  }
+  value_inside_ = sampler.points.declare("value.inside");
   sampler.line_waivers.push_back(
       {R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81,
        "value.low: the accumulator clamped to [0, 1] is never negative"});
@@ -197,7 +205,7 @@ void Clamp01Output::hit(Coverpoints& points, std::int64_t acc_raw) const {
   const bool high = acc_.int_bits > 0 && acc_raw > one;
   points.hit(clamp_ + (acc_raw < 0 ? 0 : high ? 1 : acc_.int_bits > 0 ? 2 : 1));
   const std::int64_t clamped = fx::clamp01_raw(acc_raw, acc_);
-  points.hit(value_ + (fx::resize_side(clamped, acc_, out_, round_) > 0 ? 0 : 1));
+  points.hit(fx::resize_side(clamped, acc_, out_, round_) > 0 ? value_high_ : value_inside_);
 }
 
 }  // namespace phongsim

@@ -94,8 +94,9 @@ struct CoverpointSampler {
 // The output stage kb's engine and quad's channels share (fx_clamp01 of the accumulator, then
 // fx_rq to the output format): the clamp's outcomes `clamp.low`, `clamp.high` (declared only
 // when `acc` has integer bits: else it never exceeds 1) and `clamp.none`, and the
-// requantization's `value.high` and `value.inside`; its low arm cannot be reached by a clamped
-// value, so `sampler`'s line waivers get the rq's low-saturation lines of instance `u_value`.
+// requantization's `value.high` (declared only when `out` cannot hold the clamped maximum) and
+// `value.inside`; the arms a clamped value cannot reach (low always, high when `out` holds 1)
+// go into `sampler`'s line waivers, the rq's saturation lines of instance `u_value`.
 class Clamp01Output {
  public:
   Clamp01Output(CoverpointSampler& sampler, fx::Format acc, fx::Format out, fx::Round round);
@@ -105,7 +106,7 @@ class Clamp01Output {
  private:
   fx::Format acc_, out_;
   fx::Round round_;
-  std::size_t clamp_ = 0, value_ = 0;
+  std::size_t clamp_ = 0, value_high_ = Coverpoints::kNone, value_inside_ = 0;
 };
 
 // The vectors a co-simulation runs (Stimulus::vector: the directed ones when `directed`, then

@@ -676,23 +676,29 @@ DutPtr RtlLibrary::create(const PipelineModel& model, std::uint32_t x_seed,
   // share (index and coordinate widths) must still agree.
   std::istringstream in(info_());
   std::map<std::string, int> built;
-  std::vector<std::pair<std::string, std::vector<std::string>>> bound;
+  struct Bound {
+    std::string port;
+    bool input = true;
+    std::vector<std::string> fields;
+  };
+  std::vector<Bound> bound;
   for (std::string line; std::getline(in, line);) {
     std::istringstream words(line);
     std::string kind, a, b;
     words >> kind >> a >> b;
     if (kind == "width") built[a] = std::stoi(b);
-    if (kind == "port") {
-      std::vector<std::string> fields;
-      for (std::string f; words >> f;) fields.push_back(f);
-      bound.emplace_back(b, fields);
+    if (kind == "port") {  // port input|output NAME FIELD...
+      Bound p{b, a == "input", {}};
+      for (std::string f; words >> f;) p.fields.push_back(f);
+      bound.push_back(std::move(p));
     }
   }
-  for (const auto& [port, fields] : bound) {
+  // An input and an output may share a name (a triangle's number in and out).
+  for (const auto& [port, input, fields] : bound) {
     int width = 0;
     for (const auto& name : fields) {
-      for (const auto* list : {&model.inputs(), &model.outputs()}) {
-        for (const Field& f : *list) width += f.name == name ? f.fmt.width() : 0;
+      for (const Field& f : input ? model.inputs() : model.outputs()) {
+        width += f.name == name ? f.fmt.width() : 0;
       }
     }
     if (const auto it = built.find(port); it != built.end() && it->second != width) {

@@ -536,11 +536,18 @@ void waive_line(CoverpointSampler& c, const std::string& name, const std::string
       {instance, "rtl/common/fx_resize.sv", line, line + 1, name + ": " + reason});
 }
 
+}  // namespace
+
+void waive_lyon_outcome(CoverpointSampler& c, const std::string& name, const std::string& reason) {
+  c.points.waive(name, reason);
+  waive_line(c, name, reason);
+}
+
+namespace {
+
 void waive_unreachable(const LyonFormats& f, CoverpointSampler& c) {
-  // Waives outcome `name` ("n.z.low") and its RTL saturation arm.
   const auto waive = [&c](const std::string& name, const std::string& reason) {
-    c.points.waive(name, reason);
-    waive_line(c, name, reason);
+    waive_lyon_outcome(c, name, reason);
   };
   const fx::Fixed one{1, fx::Format{false, 1, 0}};
   const auto side = [&f](fx::Fixed v, fx::Format to) {
@@ -805,7 +812,8 @@ const PipelineInfo& lyon_pipeline() {
       .summary = "Lyon specular unit: LIRP, g1/g2 normalization, D, x, f_k (Figs. 7, 8), diffuse",
       .top = "lyon_top",
       .rtl_files = {"rtl/common", "rtl/lirp/lirp_core.sv", "rtl/lyon/lyon_norm.sv",
-                    "rtl/lyon/lyon_x.sv", "rtl/lyon/lyon_shape.sv", "rtl/lyon/lyon_top.sv"},
+                    "rtl/lyon/lyon_x.sv", "rtl/lyon/lyon_shape.sv", "rtl/lyon/lyon_core.sv",
+                    "rtl/lyon/lyon_top.sv"},
       .ports = {{"in_n0_i", true, {"n0_x", "n0_y", "n0_z"}},
                 {"in_n1_i", true, {"n1_x", "n1_y", "n1_z"}},
                 {"in_a_i", true, {"a"}},
@@ -847,9 +855,9 @@ const PipelineInfo& lyon_pipeline() {
                    "localparam bit [31:0] S         = (K + 2) / 2;",
                    "localparam bit [31:0] S         = (K + 1) / 2;",
                    "Fig. 8 shift without the even-k sqrt(2) correction"},
-                  {"lyon-halfway", "halfway", "rtl/lyon/lyon_top.sv", ".b_i(v_q1[c*VecW+:VecW])",
+                  {"lyon-halfway", "halfway", "rtl/lyon/lyon_core.sv", ".b_i(v_q1[c*VecW+:VecW])",
                    ".b_i(l_q1[c*VecW+:VecW])", "H = (L + L)/2 instead of (L + V)/2"},
-                  {"lyon-diffuse-delay", "default", "rtl/lyon/lyon_top.sv",
+                  {"lyon-diffuse-delay", "default", "rtl/lyon/lyon_core.sv",
                    "pipe_delay #(.Width(DiffW), .Depth(Depth - 7))",
                    "pipe_delay #(.Width(DiffW), .Depth(Depth - 8))",
                    "diffuse term one stage short: paired with the wrong pixel"}},

@@ -44,6 +44,10 @@ struct LyonPixel {
 // L unit vectors; shininess at least 1. Lengths within two LSBs of the vector format.
 [[nodiscard]] InputContract lyon_contract(const LyonFormats& f);
 
+// Waives coverpoint outcome `name` of Lyon's unit ("n.z.low", declared by the entry's
+// coverpoints) in `c` with `reason`, and the RTL saturation arm of its requantization.
+void waive_lyon_outcome(CoverpointSampler& c, const std::string& name, const std::string& reason);
+
 // ---- analysis ----
 
 // Length of a vector of `length` after approximate normalization: float g1 and g2, and the

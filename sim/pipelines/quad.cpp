@@ -307,34 +307,17 @@ std::vector<QuadContractRow> quad_out_of_contract(const QuadFormats& f, QuadMode
   return rows;
 }
 
-// ---- registry entry ----
-namespace {
-
-std::unique_ptr<PipelineModel> make_model(const Config& cfg) {
-  const QuadFormats formats = QuadFormats::from_config(cfg);
-  (void)quad_mode(cfg);  // the stimulus reads it; check it here
-  cfg.check_all_used();
-  return std::make_unique<QuadModel>(formats);
-}
-
-Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
-  return make_quad_stimulus(model, quad_mode(cfg));
-}
-
-int latency(const Config&) { return 4; }  // program to its first pixel (docs/quad.md)
-
 // quad_walker's state machine, with the source offering a program every cycle and the sink
 // always ready: the program accepted in cycle 0 is loaded in cycle 1 (Idle); after that a
 // program is loaded in the cycle its predecessor's last row ends, or in an Idle cycle after a
 // program without rows. Each row costs a Row cycle and one cycle per covered pixel (the model's
 // outputs say which); a pixel leaves through the output register the cycle after it fires.
-FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
-                   std::span<const std::int64_t> out, std::span<const std::uint32_t> counts,
-                   std::vector<FrameCycles>* per_vector) {
+FrameCycles walker_cycles(std::span<const std::int64_t> in, std::span<const std::int64_t> out,
+                          std::size_t out_fields, std::span<const std::uint32_t> counts,
+                          std::vector<FrameCycles>* per_vector) {
   const std::size_t programs = counts.size(), fields = programs == 0 ? 0 : in.size() / programs;
   if (per_vector != nullptr) per_vector->assign(programs, {});
-  constexpr std::size_t kOutFields = 5;  // x, y, r, g, b
-  FrameCycles now, at_last;              // at_last: as of the last pixel so far
+  FrameCycles now, at_last;  // at_last: as of the last pixel so far
   std::uint64_t t = 1, last_fire = 0;
   std::size_t pixel = 0;  // the next output
   bool loaded = false;    // the next program is loaded without an Idle cycle
@@ -350,7 +333,7 @@ FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
     loaded = y0 <= y1;
     for (std::int64_t y = y0; y <= y1; ++y) {
       std::uint64_t w = 0;
-      while (pixel + w < end && out[(pixel + w) * kOutFields + 1] == y) ++w;
+      while (pixel + w < end && out[(pixel + w) * out_fields + 1] == y) ++w;
       ++(w == 0 ? now.empty_row_cycles : now.setup_cycles);
       ++t;
       if (w == 0) continue;
@@ -371,6 +354,55 @@ FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
   at_last.fill_cycles = 2;  // the input and output registers
   at_last.cycles = last_fire + 2;
   return at_last;
+}
+
+std::vector<PortBinding> walker_program_ports(const std::array<std::string, 3>& channel_ports,
+                                              const std::array<std::string, 3>& prefixes) {
+  std::vector<PortBinding> p{{"in_bbox_i", true, {"x0", "y0", "x1", "y1"}}};
+  for (int k = 0; k < 3; ++k) {
+    PortBinding edge{fmt::format("in_edge{}_i", k), true, {}};
+    for (const char* w : {"kind", "q", "r", "d", "dq", "dr"})
+      edge.fields.push_back(fmt::format("e{}_{}", k, w));
+    p.push_back(std::move(edge));
+  }
+  for (std::size_t c = 0; c < 3; ++c) {
+    PortBinding channel{channel_ports[c], true, {}};
+    for (const char* w : {"f", "gy", "gx", "a", "b", "c"})
+      channel.fields.push_back(fmt::format("{}_{}", prefixes[c], w));
+    p.push_back(std::move(channel));
+  }
+  return p;
+}
+
+// ---- registry entry ----
+namespace {
+
+std::vector<PortBinding> ports() {
+  std::vector<PortBinding> p =
+      walker_program_ports({"in_red_i", "in_green_i", "in_blue_i"}, {"r", "g", "b"});
+  p.insert(p.end(), {{"out_x_o", false, {"x"}},
+                     {"out_y_o", false, {"y"}},
+                     {"out_rgb_o", false, {"r", "g", "b"}}});
+  return p;
+}
+
+std::unique_ptr<PipelineModel> make_model(const Config& cfg) {
+  const QuadFormats formats = QuadFormats::from_config(cfg);
+  (void)quad_mode(cfg);  // the stimulus reads it; check it here
+  cfg.check_all_used();
+  return std::make_unique<QuadModel>(formats);
+}
+
+Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
+  return make_quad_stimulus(model, quad_mode(cfg));
+}
+
+int latency(const Config&) { return 4; }  // program to its first pixel (docs/quad.md)
+
+FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
+                   std::span<const std::int64_t> out, std::span<const std::uint32_t> counts,
+                   std::vector<FrameCycles>* per_vector) {
+  return walker_cycles(in, out, 5, counts, per_vector);
 }
 
 // configs/quad/default.toml's walker by hand: acc S2.32 (35-bit sums, wrapping), out 0.8 rounded
@@ -507,11 +539,11 @@ CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
                         "bound.upper.tie_in", "bound.upper.tie_out"}) {
     c.points.declare(b);
   }
-  // quad_walker's narrowing compares (`if (... 0 - q_ext[k] > lower) lower = ...` and the upper
-  // one, lines 137-138) sit in a `for` loop of an always_comb that Verilator unrolls, and its
+  // quad_walker_core's narrowing compares (`if (... 0 - q_ext[k] > lower) lower = ...` and the
+  // upper one, lines 148-149) sit in a `for` loop of an always_comb that Verilator unrolls, and its
   // line coverage never counts them although they decide every narrowed span end, which the
   // model counts as bound.{lower,upper}.edge and the co-simulation checks bit for bit.
-  c.line_waivers.push_back({R"(\.quad_walker$)", "rtl/quad/quad_walker.sv", 137, 138,
+  c.line_waivers.push_back({R"(\.u_walker$)", "rtl/quad/quad_walker_core.sv", 148, 149,
                             "bound.{lower,upper}.edge: the narrowing compares in an unrolled "
                             "always_comb loop, which Verilator's line coverage does not count"});
   c.sample = [=](PipelineModel& model, std::span<const std::int64_t> in, Coverpoints& cp) {
@@ -643,17 +675,9 @@ const PipelineInfo& quad_pipeline() {
       .name = "quad",
       .summary = "Quadratic/linear colour interpolator: triangle walker, forward differencing",
       .top = "quad_walker",
-      .rtl_files = {"rtl/common", "rtl/quad/quad_channel.sv", "rtl/quad/quad_walker.sv"},
-      .ports = {{"in_bbox_i", true, {"x0", "y0", "x1", "y1"}},
-                {"in_edge0_i", true, {"e0_kind", "e0_q", "e0_r", "e0_d", "e0_dq", "e0_dr"}},
-                {"in_edge1_i", true, {"e1_kind", "e1_q", "e1_r", "e1_d", "e1_dq", "e1_dr"}},
-                {"in_edge2_i", true, {"e2_kind", "e2_q", "e2_r", "e2_d", "e2_dq", "e2_dr"}},
-                {"in_red_i", true, {"r_f", "r_gy", "r_gx", "r_a", "r_b", "r_c"}},
-                {"in_green_i", true, {"g_f", "g_gy", "g_gx", "g_a", "g_b", "g_c"}},
-                {"in_blue_i", true, {"b_f", "b_gy", "b_gx", "b_a", "b_b", "b_c"}},
-                {"out_x_o", false, {"x"}},
-                {"out_y_o", false, {"y"}},
-                {"out_rgb_o", false, {"r", "g", "b"}}},
+      .rtl_files = {"rtl/common", "rtl/quad/quad_channel.sv", "rtl/quad/quad_walker_core.sv",
+                    "rtl/quad/quad_walker.sv"},
+      .ports = ports(),
       .make_model = make_model,
       .make_stimulus = make_stimulus,
       .independent_vectors = true,
@@ -670,8 +694,8 @@ const PipelineInfo& quad_pipeline() {
       .float_error = float_error,
       .analyze = analyze,
       .mutants =
-          {{"quad-fill", "default", "rtl/quad/quad_walker.sv", "assign carry = sum >= {1'b0, d_q};",
-            "assign carry = sum > {1'b0, d_q};",
+          {{"quad-fill", "default", "rtl/quad/quad_walker_core.sv",
+            "assign carry = sum >= {1'b0, d_q};", "assign carry = sum > {1'b0, d_q};",
             "edge DDA carries one remainder step late: spans off by a pixel"},
            {"quad-jump", "default", "rtl/quad/quad_channel.sv",
             "assign f_start = col_f + i0_ext * g0_q + a_q * i0_i0m1;",
@@ -679,16 +703,17 @@ const PipelineInfo& quad_pipeline() {
             "row start forgets the quadratic term a·i0(i0-1)"},
            {"quad-column", "default", "rtl/quad/quad_channel.sv", "    .d2_step_i(c_q << 1),",
             "    .d2_step_i(c_q),", "column second difference c instead of 2c"},
-           {"quad-clip", "default", "rtl/quad/quad_walker.sv", "{1'b0}}, x0_q});",
+           {"quad-clip", "default", "rtl/quad/quad_walker_core.sv", "{1'b0}}, x0_q});",
             "{1'b0}}, x0_q}) - 1;", "span not clipped to the box on the left"},
            // Two bugs at the walker's seam to its output buffer that leave every pixel
            // right: only the stream assertions (rtl/common/stream_check.sv) see them.
-           {"quad-seam-valid", "default", "rtl/quad/quad_walker.sv",
+           {"quad-seam-valid", "default", "rtl/quad/quad_walker_core.sv",
             "assign emitting  = state_q == Pixels;",
             "assign emitting  = state_q == Pixels && !u_out.u_check_in.stalled_q;",
             "a pixel offered, stalled, then withdrawn for a cycle", "valid dropped while stalled"},
-           {"quad-seam-data", "default", "rtl/quad/quad_walker.sv",
-            ".in_data_i  ({rgb, y_q, x_q}),", ".in_data_i  (out_ready ? {rgb, y_q, x_q} : '0),",
+           {"quad-seam-data", "default", "rtl/quad/quad_walker_core.sv",
+            ".in_data_i  ({tag_q, rgb, y_q, x_q}),",
+            ".in_data_i  (out_ready ? {tag_q, rgb, y_q, x_q} : '0),",
             "a stalled pixel's data zeroed until it is taken", "data changed while stalled"}},
   };
   return info;

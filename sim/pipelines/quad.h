@@ -6,7 +6,10 @@
 // (s, t), by triangle size and guard bits).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "base/rng.h"
 #include "model/fixed.h"
@@ -33,6 +36,20 @@ namespace phongsim {
 [[nodiscard]] quad::Coeffs random_colour(Rng& rng, QuadMode mode);
 
 [[nodiscard]] Stimulus make_quad_stimulus(const PipelineModel& model, QuadMode mode);
+
+// The walker's program ports (quad_walker_core's in_bbox_i, in_edge<k>_i and the three channel
+// ports `channel_ports`, whose fields are `<prefix>_{f,gy,gx,a,b,c}` for `prefixes`), bound to
+// QuadModel's field names: every pipeline built on the walker binds them alike.
+[[nodiscard]] std::vector<PortBinding> walker_program_ports(
+    const std::array<std::string, 3>& channel_ports, const std::array<std::string, 3>& prefixes);
+
+// The cycle model of the walker (quad_walker_core; PipelineInfo::cycles): programs `in` (the
+// walker's program fields first in each), their pixels `out` (`out_fields` values each, y
+// second) and each program's pixel count. Fill: the walker's input and output registers.
+[[nodiscard]] FrameCycles walker_cycles(std::span<const std::int64_t> in,
+                                        std::span<const std::int64_t> out, std::size_t out_fields,
+                                        std::span<const std::uint32_t> counts,
+                                        std::vector<FrameCycles>* per_vector);
 
 // ---- analysis ----
 

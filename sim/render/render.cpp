@@ -34,6 +34,7 @@ enum class Kind {
   gouraud4,
   quadratic,
   pixel,
+  triangle_lyon,
   kb_exact,
   kb_decompose,
   kb_one_vector,
@@ -83,6 +84,12 @@ const std::vector<Method>& methods() {
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 1); }},
       {{"lyon-k2", "Lyon f_2 (row 4; unit: Fig. 7, g2)", "lyon/default", false},
        Kind::pixel,
+       [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
+      {{"lyon-k2-tri",
+        "Lyon f_2 from triangle to pixels: the walker interpolates the normal, V and L per "
+        "triangle (unit: shade_lyon/default)",
+        "shade_lyon/default", true},
+       Kind::triangle_lyon,
        [](Vec3 n, Vec3 l, Vec3 v, double s) { return lyon::lyon_reflect(n, l, v, s, 2); }},
       {{"lyon-k3", "Lyon f_3 (unit: Fig. 7, g2)", "lyon/fig7_k3", false},
        Kind::pixel,
@@ -531,6 +538,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   const auto float_image = [&](const Method& m) {
     switch (m.kind) {
       case Kind::pixel:
+      case Kind::triangle_lyon:
         return pixel_float(m, f);
       case Kind::kb_exact:
       case Kind::kb_decompose:
@@ -556,6 +564,8 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
     switch (m.kind) {
       case Kind::pixel:
         return pixel_unit(f, unit, progress, what);
+      case Kind::triangle_lyon:
+        return triangle_lyon_unit(f, unit, progress, what);
       case Kind::kb_one_vector:
         return kb_unit(f, unit, progress, what);
       default:

@@ -13,6 +13,7 @@
 #include "model/lyon.h"
 #include "model/quad.h"
 #include "model/quad_setup.h"
+#include "model/shade_lyon.h"
 #include "sim/cosim/harness.h"
 #include "sim/pipelines/registry.h"
 
@@ -117,6 +118,45 @@ UnitImage pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
   return {std::move(img), {unit.frame(), f.fragments.size(), {}}};
 }
 
+namespace {
+
+// A walker unit's programs, one per triangle (and pass), with the pixels the frame's coverage
+// says each emits: the unit must emit exactly those (its pixels come back program by program).
+struct TrianglePrograms {
+  std::vector<std::int64_t> words;
+  std::vector<int> tris;
+  std::vector<std::size_t> counts;
+  std::size_t pixels = 0;
+
+  void add(const std::vector<std::int64_t>& program, const Frame& f, std::size_t t) {
+    words.insert(words.end(), program.begin(), program.end());
+    tris.push_back(static_cast<int>(t));
+    counts.push_back(f.coverage[t].size());
+    pixels += counts.back();
+  }
+  // Every output (`fields` values per pixel); Error when the unit's pixels are not the coverage.
+  [[nodiscard]] std::vector<std::int64_t> run(Unit& unit, std::size_t fields,
+                                              const RenderProgress& progress,
+                                              std::string_view what) const {
+    std::vector<std::int64_t> out = unit.run(words, progress, what);
+    if (out.size() != fields * pixels) {
+      throw Error(fmt::format("{}: the unit emitted {} pixels, coverage says {}", what,
+                              out.size() / fields, pixels));
+    }
+    return out;
+  }
+  // The frame's cycles and each program's, by triangle.
+  [[nodiscard]] FrameReport frame(const Unit& unit) const {
+    FrameReport r{unit.frame(), pixels, {}};
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      r.triangles.emplace_back(tris[k], unit.vector_cycles()[k]);
+    }
+    return r;
+  }
+};
+
+}  // namespace
+
 UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgress& progress,
                       std::string_view what) {
   const QuadFormats qf = QuadFormats::from_config(unit.config());
@@ -128,9 +168,7 @@ UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgr
   // go in scaled by that top value, so the output's raw bits are the framebuffer value.
   const double top = fx::to_real(qf.out.max_raw(), qf.out);
   const std::vector<bool>& visible = f.visible;
-  std::vector<std::int64_t> words;
-  std::vector<int> tris;
-  std::vector<std::size_t> counts;
+  TrianglePrograms programs;
   for (std::size_t t = 0; t < visible.size(); ++t) {
     if (!visible[t]) continue;
     const auto c = sample_colours(f, static_cast<int>(t));
@@ -141,38 +179,87 @@ UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgr
       colour[ch] = linear ? quad::linear_coefficients(r[0], r[2], r[4]) : quad::coefficients(r);
     }
     // Clipped to the image, so the unit emits exactly the triangle's coverage.
-    const auto w =
-        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height}));
-    words.insert(words.end(), w.begin(), w.end());
-    tris.push_back(static_cast<int>(t));
-    counts.push_back(f.coverage[t].size());
+    programs.add(
+        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height})), f,
+        t);
   }
-  const std::vector<std::int64_t> out = unit.run(words, progress, what);
-  std::size_t expected = 0;
-  for (const std::size_t c : counts) expected += c;
-  if (out.size() != 5 * expected) {
-    throw Error(fmt::format("{}: the unit emitted {} pixels, coverage says {}", what,
-                            out.size() / 5, expected));
-  }
+  const std::vector<std::int64_t> out = programs.run(unit, 5, progress, what);
   Image img = blank(f);
   std::size_t at = 0;
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    for (std::size_t i = 0; i < counts[k]; ++i, at += 5) {
+  for (std::size_t k = 0; k < programs.tris.size(); ++k) {
+    for (std::size_t i = 0; i < programs.counts[k]; ++i, at += 5) {
       const auto x = static_cast<int>(out[at]);
       const auto y = static_cast<int>(out[at + 1]);
       if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
-      if (!f.shows(static_cast<std::size_t>(tris[k]), x, y)) continue;
+      if (!f.shows(static_cast<std::size_t>(programs.tris[k]), x, y)) continue;
       const double full = static_cast<double>(qf.out.max_raw());
       img.at(x, y) =
           to_rgb8({static_cast<double>(out[at + 2]) / full, static_cast<double>(out[at + 3]) / full,
                    static_cast<double>(out[at + 4]) / full});
     }
   }
-  FrameReport frame{unit.frame(), expected, {}};
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    frame.triangles.emplace_back(tris[k], unit.vector_cycles()[k]);
+  return {std::move(img), programs.frame(unit)};
+}
+
+UnitImage triangle_lyon_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
+                             std::string_view what) {
+  const ShadeLyonModel m(ShadeLyonFormats::from_config(unit.config()));
+  const ShadeLyonFormats& sf = m.formats();
+  if (sf.walker.sub_bits != kSubBits) {
+    throw Error(fmt::format("{}: the renderer projects with {} subpixel bits; {} has {}", what,
+                            kSubBits, unit.config().origin(), sf.walker.sub_bits));
   }
-  return {std::move(img), std::move(frame)};
+  const std::vector<Light>& lights = f.lighting.lights;
+  const std::size_t nl = lights.size();
+  const Fragment material = material_fragment(f);
+  const double shin = sf.lyon.arrangement == 8 ? root_shininess(material.shininess)
+                                               : std::round(material.shininess);
+  TrianglePrograms programs;
+  for (std::size_t t = 0; t < f.visible.size(); ++t) {
+    if (!f.visible[t]) continue;
+    const auto& idx = f.geometry.triangles[t];
+    ShadeLyonTriangle in{.tri = f.screen[t]};
+    Vec3 centroid{0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 n = f.geometry.normals[static_cast<std::size_t>(idx[k])];
+      in.normal[k] = {n.x, n.y, n.z};
+      centroid = centroid + f.geometry.positions[static_cast<std::size_t>(idx[k])] * (1.0 / 3);
+    }
+    const Vec3 v = f.lighting.v_at(centroid);
+    in.v = {v.x, v.y, v.z};
+    in.shin = shin;
+    in.id = static_cast<std::int64_t>(t & 0xffff);
+    for (const Light& light : lights) {
+      const Vec3 l = Lighting::l_at(light, centroid);
+      in.l = {l.x, l.y, l.z};
+      programs.add(m.words(in, QuadScreen{f.width, f.height}), f, t);  // clipped to the image
+    }
+  }
+  const std::vector<std::int64_t> out = programs.run(unit, 5, progress, what);
+  // Each visible pixel's amounts, light by light, from the program of its triangle and light.
+  std::vector<Amounts> amounts(f.fragments.size() * nl);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < programs.tris.size(); ++k) {
+    for (std::size_t i = 0; i < programs.counts[k]; ++i, at += 5) {
+      const auto x = static_cast<int>(out[at]);
+      const auto y = static_cast<int>(out[at + 1]);
+      if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
+      if (!f.shows(static_cast<std::size_t>(programs.tris[k]), x, y)) continue;
+      const int fragment = f.owner[static_cast<std::size_t>(y) * static_cast<std::size_t>(f.width) +
+                                   static_cast<std::size_t>(x)];
+      if (fragment < 0) continue;
+      amounts[static_cast<std::size_t>(fragment) * nl + k % nl] = {
+          fx::to_real(out[at + 4], sf.lyon.diff), fx::to_real(out[at + 3], sf.lyon.spec)};
+    }
+  }
+  Image img = blank(f);
+  std::vector<Amounts> a(nl);
+  for (std::size_t i = 0; i < f.fragments.size(); ++i) {
+    std::copy_n(amounts.begin() + static_cast<std::ptrdiff_t>(i * nl), nl, a.begin());
+    const Fragment& fr = f.fragments[i];
+    img.at(fr.x, fr.y) = to_rgb8(combine(fr, lights, a));
+  }
+  return {std::move(img), programs.frame(unit)};
 }
 
 // The channel values are scaled by the output's top value, like the quadratic unit's (vertex_unit).

@@ -68,6 +68,13 @@ struct UnitImage {
 [[nodiscard]] UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit,
                                     const RenderProgress& progress, std::string_view what);
 
+// Per-pixel Lyon through the triangle-in, pixels-out pipeline (shade_lyon): one program per
+// triangle with a visible pixel and light, the vertex normals interpolated by the walker, V, L
+// and the shininess of the triangle's centroid (exact for lights and viewer at infinity); the
+// pipeline's pixels are kept where the triangle is the visible surface.
+[[nodiscard]] UnitImage triangle_lyon_unit(const Frame& f, Unit& unit,
+                                           const RenderProgress& progress, std::string_view what);
+
 // The one-vector method (Kuijk–Blake eq. 4) through the Kuijk–Blake engine: per span and colour
 // channel one program whose terms are the ambient (a constant: angle 0, rate 0), and per light
 // the diffuse and the specular one-vector terms scaled by the light's and the material's colour.
