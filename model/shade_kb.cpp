@@ -6,8 +6,8 @@
 
 namespace phongsim {
 
-ShadeKbModel::ShadeKbModel(const KbFormats& formats)
-    : engines_{KbModel(formats), KbModel(formats), KbModel(formats)} {
+ShadeKbModel::ShadeKbModel(const KbFormats& formats, bool stages)
+    : engines_{KbModel(formats, stages), KbModel(formats, stages), KbModel(formats, stages)} {
   const fx::Format coord{false, kCoordBits, 0};
   const fx::Format count{false, formats.event_bits, 0};
   inputs_ = {{"n", fx::Format{false, KbFormats::kIndexBits, 0}}, {"x0", coord}, {"y0", coord}};

@@ -32,7 +32,9 @@ class ShadeKbModel final : public PipelineModel {
     kInputs
   };
 
-  explicit ShadeKbModel(const KbFormats& formats);
+  // `stages`: the engines evaluate through the fixed-point core operation by operation instead
+  // of their compiled plans (KbModel's; tests/plan_test.cpp compares the two).
+  explicit ShadeKbModel(const KbFormats& formats, bool stages = false);
 
   [[nodiscard]] const KbFormats& formats() const { return engines_[0].formats(); }
 
