@@ -172,7 +172,21 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
   const std::uint64_t max_events = (std::uint64_t{1} << f.event_bits) - 1;
   std::vector<Word> d = kb_directed_words(f);
 
-  // Random: chunk c of kChunkWords words, cached (consecutive indices share a chunk). The cache
+  // One program (at most 1 + max_events words) and at least one filler word per chunk.
+  return span_stimulus(
+      model, std::move(d), max_events + 2,
+      [f, setup, max_events](Rng& rng) {
+        return rng.below(2) == 0 ? kb_random_words(rng, f, max_events)
+                                 : kb_random_program(rng, f, setup);
+      },
+      header(0, 0, 0, 0, 0));  // filler: one-pixel spans
+}
+
+Stimulus span_stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
+                       std::uint64_t chunk_words,
+                       std::function<std::vector<std::vector<std::int64_t>>(Rng&)> chunk,
+                       std::vector<std::int64_t> filler) {
+  // Random: chunk c of chunk_words words, cached (consecutive indices share a chunk). The cache
   // is part of the function object: a copy of the stimulus (one per co-simulation worker) has its
   // own.
   struct Cache {
@@ -180,32 +194,30 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
     std::uint64_t chunk = UINT64_MAX;
     std::vector<Word> words;
   };
-  const std::uint64_t directed = d.size();
-  // One program (at most 1 + max_events words) and at least one filler word per chunk.
-  const std::uint64_t chunk_words = max_events + 2;
-  auto random = [f, setup, max_events, directed, cache = Cache{}, chunk_words](
-                    std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) mutable {
-    const std::uint64_t r = index - directed;
-    const std::uint64_t chunk = r / chunk_words;
-    if (cache.chunk != chunk || cache.seed != seed) {
-      Rng rng(seed, kStimulusStream, chunk);
-      cache.words = rng.below(2) == 0 ? kb_random_words(rng, f, max_events)
-                                      : kb_random_program(rng, f, setup);
-      cache.words.resize(chunk_words, header(0, 0, 0, 0, 0));  // filler: one-pixel spans
-      cache.chunk = chunk;
+  const std::uint64_t first = directed.size();
+  auto random = [first, cache = Cache{}, chunk_words, chunk = std::move(chunk),
+                 filler = std::move(filler)](std::uint64_t seed, std::uint64_t index,
+                                             std::span<std::int64_t> in) mutable {
+    const std::uint64_t r = index - first;
+    const std::uint64_t c = r / chunk_words;
+    if (cache.chunk != c || cache.seed != seed) {
+      Rng rng(seed, kStimulusStream, c);
+      cache.words = chunk(rng);
+      cache.words.resize(chunk_words, filler);
+      cache.chunk = c;
       cache.seed = seed;
     }
     const Word& w = cache.words[r % chunk_words];
     std::copy(w.begin(), w.end(), in.begin());
   };
-  Stimulus stimulus(model, std::move(d), random);
+  Stimulus stimulus(model, std::move(directed), random);
   // Programs start at vector 0, after the directed ones, and at every chunk: each chunk ends in
-  // one-pixel spans, so the engine is idle there. (The directed programs include malformed ones
-  // with left-over event words: they are one group.)
-  stimulus.set_groups([directed, chunk_words](std::uint64_t index) -> std::uint64_t {
+  // filler (one-pixel spans), so the pipeline is idle there. (Directed programs may include
+  // malformed ones with left-over event words: they are one group.)
+  stimulus.set_groups([first, chunk_words](std::uint64_t index) -> std::uint64_t {
     if (index == 0) return 0;
-    if (index <= directed) return directed;
-    return directed + (index - directed + chunk_words - 1) / chunk_words * chunk_words;
+    if (index <= first) return first;
+    return first + (index - first + chunk_words - 1) / chunk_words * chunk_words;
   });
   return stimulus;
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "base/rng.h"
@@ -49,6 +50,15 @@ namespace phongsim {
 [[nodiscard]] std::vector<std::vector<std::int64_t>> kb_directed_words(const KbFormats& f);
 
 [[nodiscard]] Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setup);
+
+// A stimulus of span programs: `directed` vectors, then random chunks of `chunk_words` vectors,
+// chunk c being `chunk`(Rng(seed, kStimulusStream, c)) padded with `filler` (a one-pixel span
+// without events, so that the pipeline is idle where a chunk ends); vector i is still a pure
+// function of (seed, i). Groups start at 0, after the directed vectors and at every chunk.
+[[nodiscard]] Stimulus span_stimulus(
+    const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
+    std::uint64_t chunk_words, std::function<std::vector<std::vector<std::int64_t>>(Rng&)> chunk,
+    std::vector<std::int64_t> filler);
 
 // The input contract of an engine of formats `f` (docs/kb.md, "Input contract"): clauses
 // "f in [0, 1]", "|d1| <= 1, |d2| <= 2", "length <= L", "events ordered, before the last pixel",

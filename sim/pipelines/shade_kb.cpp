@@ -148,57 +148,31 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
                             7));
   }
 
-  // Random: chunk c of chunk_words words, cached (consecutive indices share a chunk); the cache
-  // is part of the function object, so each copy of the stimulus has its own.
-  struct Cache {
-    std::uint64_t seed = 0;
-    std::uint64_t chunk = UINT64_MAX;
-    std::vector<Word> words;
-  };
-  const std::uint64_t directed = d.size();
-  // One span (at most 1 + 3 max_events words) and at least one filler word per chunk.
-  const std::uint64_t chunk_words = 3 * max_events + 2;
-  auto random = [f, setup, max_events, directed, cache = Cache{}, chunk_words](
-                    std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) mutable {
-    const std::uint64_t r = index - directed;
-    const std::uint64_t chunk = r / chunk_words;
-    if (cache.chunk != chunk || cache.seed != seed) {
-      Rng rng(seed, kStimulusStream, chunk);
-      const auto length = static_cast<int>(
-          std::max(1.0, std::min(4096.0, std::floor(std::exp(rng.uniform() * std::log(4097.0))))));
-      std::array<Program, 3> programs;
-      for (Program& p : programs) {
-        if (rng.below(2) == 0) {
-          p = kb_random_words(rng, f, max_events, length);
-        } else {
-          KbSpan span = kb_random_span(rng, setup, length);
-          p = kb_fitting_program(span, f, setup);
+  // Random: one span (at most 1 + 3 max_events words) and at least one filler word per chunk.
+  return span_stimulus(
+      model, std::move(d), 3 * max_events + 2,
+      [f, setup, max_events](Rng& rng) {
+        const auto length = static_cast<int>(std::max(
+            1.0, std::min(4096.0, std::floor(std::exp(rng.uniform() * std::log(4097.0))))));
+        std::array<Program, 3> programs;
+        for (Program& p : programs) {
+          if (rng.below(2) == 0) {
+            p = kb_random_words(rng, f, max_events, length);
+          } else {
+            KbSpan span = kb_random_span(rng, setup, length);
+            p = kb_fitting_program(span, f, setup);
+          }
         }
-      }
-      // x0 on the screen with the span (one time in eight anywhere: x wraps), any y.
-      const auto room = static_cast<std::uint64_t>(std::max<std::int64_t>(kScreen - length, 0) + 1);
-      const auto x =
-          static_cast<std::int64_t>(rng.below(8) == 0 ? rng.below(kScreen) : rng.below(room));
-      const auto y = static_cast<std::int64_t>(rng.below(kScreen));
-      cache.words = shade_kb_span_words(
-          programs, x, y, static_cast<std::int64_t>(rng.below(std::uint64_t{1} << 30)));
-      Word filler(M::kInputs, 0);  // one-pixel spans without events
-      cache.words.resize(chunk_words, filler);
-      cache.chunk = chunk;
-      cache.seed = seed;
-    }
-    const Word& w = cache.words[r % chunk_words];
-    std::copy(w.begin(), w.end(), in.begin());
-  };
-  Stimulus stimulus(model, std::move(d), random);
-  // Spans start at vector 0, after the directed ones, and at every chunk (which ends in
-  // one-pixel spans: the pipeline is idle there).
-  stimulus.set_groups([directed, chunk_words](std::uint64_t index) -> std::uint64_t {
-    if (index == 0) return 0;
-    if (index <= directed) return directed;
-    return directed + (index - directed + chunk_words - 1) / chunk_words * chunk_words;
-  });
-  return stimulus;
+        // x0 on the screen with the span (one time in eight anywhere: x wraps), any y.
+        const auto room =
+            static_cast<std::uint64_t>(std::max<std::int64_t>(kScreen - length, 0) + 1);
+        const auto x = static_cast<std::int64_t>(
+            rng.below(8) == 0 ? rng.below(std::uint64_t{kScreen}) : rng.below(room));
+        const auto y = static_cast<std::int64_t>(rng.below(std::uint64_t{kScreen}));
+        return shade_kb_span_words(programs, x, y,
+                                   static_cast<std::int64_t>(rng.below(std::uint64_t{1} << 30)));
+      },
+      Word(M::kInputs, 0));  // filler: one-pixel spans without events
 }
 
 // kb's contract for each channel's program (its clauses in its order), then the span on the
