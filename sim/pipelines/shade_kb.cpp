@@ -189,17 +189,17 @@ InputContract contract(const PipelineModel& model, const Config&) {
   };
   return InputContract(std::move(clauses), [screen, s = Parse{{kb, kb, kb}, {}}](
                                                std::span<const std::int64_t> in) mutable {
+    // The demux's route (ShadeKbModel::route): a header to every channel, an event to the first
+    // channel with events still due.
     const bool header = s.left[0] == 0 && s.left[1] == 0 && s.left[2] == 0;
+    const std::size_t first = s.left[0] != 0 ? 0 : s.left[1] != 0 ? 1 : 2;
     int broken = InputContract::kIn;
     for (std::size_t c = 0; c < 3; ++c) {
-      const bool target =
-          header || (s.left[c] != 0 && (c == 0 || s.left[c - 1] == 0) && (c < 2 || s.left[0] == 0));
-      if (!target) continue;
-      const auto word = M::channel_word(in, static_cast<int>(c));
-      const int b = s.channels[c].check(word);
+      if (!header && c != first) continue;
+      const int b = s.channels[c].check(M::channel_word(in, static_cast<int>(c)));
       if (b != InputContract::kIn && (broken == InputContract::kIn || b < broken)) broken = b;
-      if (!header) --s.left[c];
     }
+    if (!header) --s.left[first];
     if (header) {
       for (std::size_t c = 0; c < 3; ++c) s.left[c] = in[M::kCount + c];
       if (broken == InputContract::kIn && in[M::kX] + in[M::kN] >= kScreen) broken = screen;
