@@ -297,7 +297,7 @@ assert j["clean"] is True and j["files"] > 0, j
 j = doc("build-rtl", "--config", default)
 assert j["plugins"][0]["pipeline"] == "lirp", j
 j = doc("list")
-assert [p["name"] for p in j["pipelines"]] == ["lirp", "lyon", "kb", "quad"], j
+assert [p["name"] for p in j["pipelines"]] == ["lirp", "lyon", "kb", "quad", "shade_lyon", "shade_quad", "shade_kb"], j
 assert any(c["path"] == "configs/lirp/default.toml" for c in j["pipelines"][0]["configs"]), j
 j = doc("analyze", "lirp", "--samples", "1000")
 t = j["tables"][0]

@@ -313,7 +313,7 @@ TEST(Contract, QuadAnalysisInsideAndOutside) {
 // Co-simulation's random stimulus covers the whole format range on purpose: every pipeline's
 // default configuration draws vectors both inside and outside its contract.
 TEST(Contract, RandomStimulusIsOnBothSides) {
-  for (const auto& name : {"lirp", "lyon", "kb", "quad"}) {
+  for (const auto& name : {"lirp", "lyon", "kb", "quad", "shade_kb"}) {
     const Loaded l(name, "default");
     const Stimulus s = l.pipeline.make_stimulus(*l.model, l.cfg);
     InputContract c = l.contract;

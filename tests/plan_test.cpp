@@ -2,9 +2,9 @@
 // replace on the hot path: bit-identical in every configuration in configs/. The requantization
 // step exhaustively against fx::resize_raw (every value of every format up to 10 bits into many
 // formats, every mode); LIRP exhaustively over every (p0, p1, a) where the three together are at
-// most 25 bits, random otherwise; Lyon, kb and quad on their co-simulation stimulus (directed
-// corners and seeded random vectors, half of them arbitrary bit patterns) plus, for Lyon, vectors
-// of uniformly random raw fields. A failure names configuration, seed and vector index.
+// most 25 bits, random otherwise; Lyon, kb, quad and shade_kb on their co-simulation stimulus
+// (directed corners and seeded random vectors, half of them arbitrary bit patterns) plus, for Lyon,
+// vectors of uniformly random raw fields. A failure names configuration, seed and vector index.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -19,6 +19,7 @@
 #include "model/lyon.h"
 #include "model/plan.h"
 #include "model/quad.h"
+#include "model/shade_kb.h"
 #include "model/shade_lyon.h"
 #include "model/shade_quad.h"
 #include "sim/pipelines/registry.h"
@@ -128,6 +129,8 @@ TEST_P(PlanTest, PlanIsUsed) {
     EXPECT_TRUE(m->plan().usable()) << name_;
   } else if (const auto* m = dynamic_cast<const KbModel*>(model_.get())) {
     EXPECT_TRUE(KbPlan(m->formats()).usable()) << name_;
+  } else if (const auto* m = dynamic_cast<const ShadeKbModel*>(model_.get())) {
+    EXPECT_TRUE(KbPlan(m->formats()).usable()) << name_;
   }
 }
 
@@ -188,6 +191,10 @@ TEST_P(PlanTest, PlanEqualsStagePath) {
   if (const auto* kb = dynamic_cast<const KbModel*>(model_.get())) {
     kb_stages = std::make_unique<KbModel>(kb->formats(), true);
   }
+  std::unique_ptr<ShadeKbModel> shade_kb_stages;
+  if (const auto* m = dynamic_cast<const ShadeKbModel*>(model_.get())) {
+    shade_kb_stages = std::make_unique<ShadeKbModel>(m->formats(), true);
+  }
   std::size_t at = 0;
   for (std::size_t i = 0; i < counts.size(); ++i) {
     const auto in = std::span<const std::int64_t>(vectors).subspan(i * n_in, n_in);
@@ -200,6 +207,8 @@ TEST_P(PlanTest, PlanEqualsStagePath) {
       want.insert(want.end(), {s.spec.raw, s.diff.raw});
     } else if (kb_stages) {
       (void)kb_stages->eval(in, want);
+    } else if (shade_kb_stages) {
+      (void)shade_kb_stages->eval(in, want);
     } else if (const auto* quad = dynamic_cast<const QuadModel*>(model_.get())) {
       (void)quad->walk(QuadModel::program(in), want);
     } else if (const auto* sq = dynamic_cast<const ShadeQuadModel*>(model_.get())) {

@@ -34,12 +34,14 @@ Word event(std::int64_t at, std::int64_t d1, std::int64_t d2, bool reload) {
   return {at, 0, 0, d1, d2, reload ? 1 : 0};
 }
 
-// A random well-formed program: length log-uniform in 1..4096, up to the configured number of
-// events at distinct increasing indices before the last pixel, values of plausible magnitude
-// (f around [0, 1], d1 ~ 1/length, d2 ~ 1/length²) or, one time in four, arbitrary bits.
-std::vector<Word> random_program(Rng& rng, const KbFormats& f, std::uint64_t max_events) {
-  const auto length = static_cast<std::int64_t>(
-      std::min(4096.0, std::floor(std::exp(rng.uniform() * std::log(4097.0)))));
+}  // namespace
+
+std::vector<std::vector<std::int64_t>> kb_random_words(Rng& rng, const KbFormats& f,
+                                                       std::uint64_t max_events, int pixels) {
+  const auto length = pixels > 0
+                          ? std::int64_t{pixels}
+                          : static_cast<std::int64_t>(std::min(
+                                4096.0, std::floor(std::exp(rng.uniform() * std::log(4097.0)))));
   const std::int64_t last = std::max<std::int64_t>(length, 1) - 1;
   const auto q = [&f](double x) {
     return fx::quantize(x, f.acc, fx::Round::half_even, fx::Overflow::saturate);
@@ -71,8 +73,6 @@ std::vector<Word> random_program(Rng& rng, const KbFormats& f, std::uint64_t max
   return words;
 }
 
-}  // namespace
-
 KbSpan kb_random_span(Rng& rng, const KbSetupOptions& setup, int length) {
   KbSpan span;
   span.length =
@@ -94,12 +94,8 @@ KbSpan kb_random_span(Rng& rng, const KbSetupOptions& setup, int length) {
   return span;
 }
 
-namespace {
-
-// kb_program() of `span`, made to fit the header's count: fewer terms first, then a narrower
-// sweep; `span` is left as the one the program is for.
-std::vector<std::vector<std::int64_t>> fitting_program(KbSpan& span, const KbFormats& formats,
-                                                       const KbSetupOptions& setup) {
+std::vector<std::vector<std::int64_t>> kb_fitting_program(KbSpan& span, const KbFormats& formats,
+                                                          const KbSetupOptions& setup) {
   while (true) {
     try {
       return kb_program(span, setup.policy, formats);
@@ -116,16 +112,13 @@ std::vector<std::vector<std::int64_t>> fitting_program(KbSpan& span, const KbFor
   }
 }
 
-}  // namespace
-
 std::vector<std::vector<std::int64_t>> kb_random_program(Rng& rng, const KbFormats& formats,
                                                          const KbSetupOptions& setup) {
   KbSpan span = kb_random_span(rng, setup);
-  return fitting_program(span, formats, setup);
+  return kb_fitting_program(span, formats, setup);
 }
 
-Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setup) {
-  const KbFormats& f = dynamic_cast<const KbModel&>(model).formats();
+std::vector<std::vector<std::int64_t>> kb_directed_words(const KbFormats& f) {
   const std::uint64_t max_events = (std::uint64_t{1} << f.event_bits) - 1;
   const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
   const std::int64_t lsb = 1;
@@ -171,8 +164,29 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
   for (std::uint64_t e = 0; e < max_events; ++e) {
     d.push_back(event(static_cast<std::int64_t>(e), one >> 6, -(one >> 10), e % 2 == 0));
   }
+  return d;
+}
 
-  // Random: chunk c of kChunkWords words, cached (consecutive indices share a chunk). The cache
+Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setup) {
+  const KbFormats& f = dynamic_cast<const KbModel&>(model).formats();
+  const std::uint64_t max_events = (std::uint64_t{1} << f.event_bits) - 1;
+  std::vector<Word> d = kb_directed_words(f);
+
+  // One program (at most 1 + max_events words) and at least one filler word per chunk.
+  return span_stimulus(
+      model, std::move(d), max_events + 2,
+      [f, setup, max_events](Rng& rng) {
+        return rng.below(2) == 0 ? kb_random_words(rng, f, max_events)
+                                 : kb_random_program(rng, f, setup);
+      },
+      header(0, 0, 0, 0, 0));  // filler: one-pixel spans
+}
+
+Stimulus span_stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
+                       std::uint64_t chunk_words,
+                       std::function<std::vector<std::vector<std::int64_t>>(Rng&)> chunk,
+                       std::vector<std::int64_t> filler) {
+  // Random: chunk c of chunk_words words, cached (consecutive indices share a chunk). The cache
   // is part of the function object: a copy of the stimulus (one per co-simulation worker) has its
   // own.
   struct Cache {
@@ -180,32 +194,30 @@ Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setu
     std::uint64_t chunk = UINT64_MAX;
     std::vector<Word> words;
   };
-  const std::uint64_t directed = d.size();
-  // One program (at most 1 + max_events words) and at least one filler word per chunk.
-  const std::uint64_t chunk_words = max_events + 2;
-  auto random = [f, setup, max_events, directed, cache = Cache{}, chunk_words](
-                    std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) mutable {
-    const std::uint64_t r = index - directed;
-    const std::uint64_t chunk = r / chunk_words;
-    if (cache.chunk != chunk || cache.seed != seed) {
-      Rng rng(seed, kStimulusStream, chunk);
-      cache.words =
-          rng.below(2) == 0 ? random_program(rng, f, max_events) : kb_random_program(rng, f, setup);
-      cache.words.resize(chunk_words, header(0, 0, 0, 0, 0));  // filler: one-pixel spans
-      cache.chunk = chunk;
+  const std::uint64_t first = directed.size();
+  auto random = [first, cache = Cache{}, chunk_words, chunk = std::move(chunk),
+                 filler = std::move(filler)](std::uint64_t seed, std::uint64_t index,
+                                             std::span<std::int64_t> in) mutable {
+    const std::uint64_t r = index - first;
+    const std::uint64_t c = r / chunk_words;
+    if (cache.chunk != c || cache.seed != seed) {
+      Rng rng(seed, kStimulusStream, c);
+      cache.words = chunk(rng);
+      cache.words.resize(chunk_words, filler);
+      cache.chunk = c;
       cache.seed = seed;
     }
     const Word& w = cache.words[r % chunk_words];
     std::copy(w.begin(), w.end(), in.begin());
   };
-  Stimulus stimulus(model, std::move(d), random);
+  Stimulus stimulus(model, std::move(directed), random);
   // Programs start at vector 0, after the directed ones, and at every chunk: each chunk ends in
-  // one-pixel spans, so the engine is idle there. (The directed programs include malformed ones
-  // with left-over event words: they are one group.)
-  stimulus.set_groups([directed, chunk_words](std::uint64_t index) -> std::uint64_t {
+  // filler (one-pixel spans), so the pipeline is idle there. (Directed programs may include
+  // malformed ones with left-over event words: they are one group.)
+  stimulus.set_groups([first, chunk_words](std::uint64_t index) -> std::uint64_t {
     if (index == 0) return 0;
-    if (index <= directed) return directed;
-    return directed + (index - directed + chunk_words - 1) / chunk_words * chunk_words;
+    if (index <= first) return first;
+    return first + (index - first + chunk_words - 1) / chunk_words * chunk_words;
   });
   return stimulus;
 }
@@ -326,7 +338,7 @@ KbOutputError kb_output_error(const KbFormats& f, const KbSetupOptions& setup,
   for (int n = 0; n < programs; ++n) {
     Rng rng(seed, kStimulusStream, static_cast<std::uint64_t>(n));
     KbSpan span = kb_random_span(rng, setup);
-    const std::vector<Word> program = fitting_program(span, f, setup);
+    const std::vector<Word> program = kb_fitting_program(span, f, setup);
     if (broken_clause(contract, program) != InputContract::kIn) {
       ++e.out_of_contract;
       continue;
@@ -388,16 +400,16 @@ std::vector<KbContractRow> kb_out_of_contract(const KbFormats& f, const KbSetupO
       std::vector<Word> program;
       bool against_span = c == 2 || c == 3;  // else: the program's own values, unwrapped
       if (c == clauses) {
-        program = random_program(rng, f, max_events);
+        program = kb_random_words(rng, f, max_events);
       } else if (c == 2) {  // a span longer than the guard bits cover
         span = kb_random_span(rng, setup,
                               static_cast<int>(longest + 1 +
                                                static_cast<std::int64_t>(rng.below(
                                                    static_cast<std::uint64_t>(4096 - longest)))));
-        program = fitting_program(span, f, setup);
+        program = kb_fitting_program(span, f, setup);
       } else {
         span = kb_random_span(rng, setup);
-        program = fitting_program(span, f, setup);
+        program = kb_fitting_program(span, f, setup);
         if (broken_clause(contract, program) != InputContract::kIn) continue;
         const double u = rng.uniform();
         const bool low = rng.below(2) == 0;
@@ -449,6 +461,52 @@ std::vector<KbContractRow> kb_out_of_contract(const KbFormats& f, const KbSetupO
   return rows;
 }
 
+KbCoverpoints::KbCoverpoints(CoverpointSampler& sampler, const KbFormats& f)
+    : output_(sampler, f.acc, f.out, f.out_round),
+      max_events_((std::int64_t{1} << f.event_bits) - 1),
+      max_last_((std::int64_t{1} << KbFormats::kIndexBits) - 1) {
+  Coverpoints& p = sampler.points;
+  events_ = p.declare("program.no_events");
+  p.declare("program.max_events");
+  span_ = p.declare("span.length_1");
+  p.declare("span.length_max");
+  ev_ = p.declare("event.section");
+  for (const char* e :
+       {"event.reload", "event.late", "event.last_pixel", "event.beyond_span", "event.dropped"}) {
+    p.declare(e);
+  }
+}
+
+void KbCoverpoints::word(std::span<const std::int64_t> in, Coverpoints& cp) {
+  if (!st_.running && st_.remaining == 0) {  // a header
+    st_ = {true, in[1], 0, in[0]};
+    if (in[1] == 0) cp.hit(events_);
+    if (in[1] == max_events_) cp.hit(events_ + 1);
+    if (in[0] == 0) cp.hit(span_);
+    if (in[0] == max_last_) cp.hit(span_ + 1);
+  } else if (!st_.running) {
+    cp.hit(ev_ + 5);  // dropped after its span
+    --st_.remaining;
+  } else {
+    if (in[0] > st_.last) {
+      cp.hit(ev_ + 4);
+    } else {
+      cp.hit(ev_ + (in[5] != 0 ? 1 : 0));
+      if (in[0] < st_.i) cp.hit(ev_ + 2);
+      if (in[0] == st_.last) cp.hit(ev_ + 3);
+    }
+    --st_.remaining;
+  }
+}
+
+void KbCoverpoints::pixels(std::span<const std::int64_t> acc, Coverpoints& cp) {
+  for (const std::int64_t f : acc) {
+    output_.hit(cp, f);
+    if (st_.i == st_.last) st_.running = false;
+    ++st_.i;
+  }
+}
+
 // ---- registry entry ----
 namespace {
 
@@ -467,10 +525,11 @@ Stimulus make_stimulus(const PipelineModel& model, const Config& cfg) {
   return make_kb_stimulus(model, KbSetupOptions::from_config(cfg));
 }
 
+}  // namespace
+
 // The domain of the accuracy claims (docs/kb.md, "Input contract"), word by word: the checker
 // follows the engine's parse (a header, then `count` event words) from reset.
-InputContract contract(const PipelineModel& model, const Config&) {
-  const KbFormats& f = dynamic_cast<const KbModel&>(model).formats();
+InputContract kb_input_contract(const KbFormats& f) {
   const std::int64_t one = std::int64_t{1} << f.acc.frac_bits;
   const std::int64_t longest = longest_span(f);
   struct Parse {
@@ -499,6 +558,12 @@ InputContract contract(const PipelineModel& model, const Config&) {
         s.previous = in[0];
         return ordered ? InputContract::kIn : 3;
       });
+}
+
+namespace {
+
+InputContract contract(const PipelineModel& model, const Config&) {
+  return kb_input_contract(dynamic_cast<const KbModel&>(model).formats());
 }
 
 int latency(const Config&) { return 2; }  // header word to its first pixel (docs/kb.md)
@@ -637,61 +702,19 @@ std::vector<StageValue> stages(PipelineModel& model, std::span<const std::int64_
   return s;
 }
 
-// The output's clamp to [0, 1] (low, high, neither) and requantization (saturating high: a
-// clamped 1.0 in an output without integer bits; not); programs without events and with the
-// most the header counts; spans of length 1 and of the maximum (2^12); events applied as a
-// section event (Δ²f only) and as a reload (Δf too), late (index below the current pixel), on
-// the span's last pixel, beyond the span's end, and dropped after it (docs/kb.md).
 CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
   const KbFormats f = dynamic_cast<const KbModel&>(model).formats();
   CoverpointSampler c;
-  const Clamp01Output output(c, f.acc, f.out, f.out_round);
-  const std::size_t events = c.points.declare("program.no_events");
-  c.points.declare("program.max_events");
-  const std::size_t span = c.points.declare("span.length_1");
-  c.points.declare("span.length_max");
-  const std::size_t ev = c.points.declare("event.section");
-  for (const char* e :
-       {"event.reload", "event.late", "event.last_pixel", "event.beyond_span", "event.dropped"}) {
-    c.points.declare(e);
-  }
-  const std::int64_t max_events = (std::int64_t{1} << f.event_bits) - 1;
-  const std::int64_t max_last = (std::int64_t{1} << KbFormats::kIndexBits) - 1;
-  struct State {  // the engine's, mirrored: in a span, its pixel and last, events still due
-    bool running = false;
-    std::int64_t remaining = 0, i = 0, last = 0;
-  };
-  c.sample = [=, st = State{}](PipelineModel& model, std::span<const std::int64_t> in,
-                               Coverpoints& cp) mutable {
+  KbCoverpoints points(c, f);
+  c.sample = [points](PipelineModel& model, std::span<const std::int64_t> in,
+                      Coverpoints& cp) mutable {
     auto& m = dynamic_cast<KbModel&>(model);
-    if (!st.running && st.remaining == 0) {  // a header
-      st = {true, in[1], 0, in[0]};
-      if (in[1] == 0) cp.hit(events);
-      if (in[1] == max_events) cp.hit(events + 1);
-      if (in[0] == 0) cp.hit(span);
-      if (in[0] == max_last) cp.hit(span + 1);
-    } else if (!st.running) {
-      cp.hit(ev + 5);  // dropped after its span
-      --st.remaining;
-    } else {
-      if (in[0] > st.last) {
-        cp.hit(ev + 4);
-      } else {
-        cp.hit(ev + (in[5] != 0 ? 1 : 0));
-        if (in[0] < st.i) cp.hit(ev + 2);
-        if (in[0] == st.last) cp.hit(ev + 3);
-      }
-      --st.remaining;
-    }
+    points.word(in, cp);
     std::vector<std::int64_t> acc, out;
     m.trace_accumulator(&acc);
     (void)m.eval(in, out);
     m.trace_accumulator(nullptr);
-    for (std::size_t k = 0; k < acc.size(); ++k) {
-      output.hit(cp, acc[k]);
-      ++st.i;
-      if (out[2 * k + 1] != 0) st.running = false;
-    }
+    points.pixels(acc, cp);
   };
   return c;
 }

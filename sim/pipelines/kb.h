@@ -5,12 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "base/rng.h"
 #include "model/kb.h"
 #include "model/kb_setup.h"
 #include "sim/cosim/contract.h"
+#include "sim/cosim/coverpoints.h"
 #include "sim/cosim/stimulus.h"
 #include "sim/pipelines/registry.h"
 
@@ -30,7 +32,64 @@ namespace phongsim {
                                                                        const KbFormats& formats,
                                                                        const KbSetupOptions& setup);
 
+// kb_program() of `span`, made to fit the header's count: fewer terms first, then a narrower
+// sweep; `span` is left as the one the program is for.
+[[nodiscard]] std::vector<std::vector<std::int64_t>> kb_fitting_program(
+    KbSpan& span, const KbFormats& formats, const KbSetupOptions& setup);
+
+// A random well-formed program: length log-uniform in 1..4096 (`pixels` 0) or `pixels`, up to
+// `max_events` events at distinct increasing indices before the last pixel, values of plausible
+// magnitude (f around [0, 1], d1 ~ 1/length, d2 ~ 1/length²) or, one time in four, arbitrary bits.
+[[nodiscard]] std::vector<std::vector<std::int64_t>> kb_random_words(Rng& rng, const KbFormats& f,
+                                                                     std::uint64_t max_events,
+                                                                     int pixels = 0);
+
+// The directed programs of kb's stimulus (make_kb_stimulus): every clamp corner, wrap-around, a
+// 4096-pixel span, events at the first and consecutive pixels, a late event, events at and after
+// the last pixel, left-over event words, back-to-back one-pixel spans, the largest count.
+[[nodiscard]] std::vector<std::vector<std::int64_t>> kb_directed_words(const KbFormats& f);
+
 [[nodiscard]] Stimulus make_kb_stimulus(const PipelineModel& model, const KbSetupOptions& setup);
+
+// A stimulus of span programs: `directed` vectors, then random chunks of `chunk_words` vectors,
+// chunk c being `chunk`(Rng(seed, kStimulusStream, c)) padded with `filler` (a one-pixel span
+// without events, so that the pipeline is idle where a chunk ends); vector i is still a pure
+// function of (seed, i). Groups start at 0, after the directed vectors and at every chunk.
+[[nodiscard]] Stimulus span_stimulus(
+    const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
+    std::uint64_t chunk_words, std::function<std::vector<std::vector<std::int64_t>>(Rng&)> chunk,
+    std::vector<std::int64_t> filler);
+
+// The input contract of an engine of formats `f` (docs/kb.md, "Input contract"): clauses
+// "f in [0, 1]", "|d1| <= 1, |d2| <= 2", "length <= L", "events ordered, before the last pixel",
+// checked word by word following the engine's parse from reset.
+[[nodiscard]] InputContract kb_input_contract(const KbFormats& f);
+
+// The engine's coverpoints, counted on one engine's word stream: the output's clamp to [0, 1]
+// (low, high, neither) and requantization (saturating high: a clamped 1.0 in an output without
+// integer bits; not); programs without events and with the most the header counts; spans of
+// length 1 and of the maximum (2^12); events applied as a section event (Δ²f only) and as a
+// reload (Δf too), late (index below the current pixel), on the span's last pixel, beyond the
+// span's end, and dropped after it (docs/kb.md). Declared once in a sampler; a copy counts
+// another engine's stream into the same points (it mirrors the engine's parse).
+class KbCoverpoints {
+ public:
+  KbCoverpoints(CoverpointSampler& sampler, const KbFormats& f);
+  // Before the engine evaluates word `in` (n, count, f, d1, d2, reload).
+  void word(std::span<const std::int64_t> in, Coverpoints& cp);
+  // After: the accumulator of every pixel it emitted.
+  void pixels(std::span<const std::int64_t> acc, Coverpoints& cp);
+
+ private:
+  struct State {  // the engine's, mirrored: in a span, its pixel and last, events still due
+    bool running = false;
+    std::int64_t remaining = 0, i = 0, last = 0;
+  };
+  Clamp01Output output_;
+  std::int64_t max_events_ = 0, max_last_ = 0;
+  std::size_t events_ = 0, span_ = 0, ev_ = 0;
+  State st_;
+};
 
 // ---- analysis ----
 
