@@ -227,7 +227,10 @@ int run(CosimCli& c) {
         if (trace_file && r.report.passed) {
           fmt::print(text, "waveform (first {} cycles): {}\n", o.trace_window, c.trace);
         }
-        if (!c.coverage.empty()) stall_class_hit(points, source, sink);
+        if (!c.coverage.empty()) {
+          stall_class_hit(points, source, sink, r.report.source_idle_cycles,
+                          r.report.sink_stall_cycles);
+        }
         runs.push_back(std::move(r));
       }
     }

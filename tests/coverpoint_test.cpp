@@ -6,13 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "base/error.h"
+#include "sim/cosim/coverage.h"
 #include "sim/cosim/coverpoints.h"
+#include "sim/cosim/stall.h"
 #include "sim/pipelines/registry.h"
 #include "tests/config_items.h"
+#include "tests/error_of.h"
 
 namespace phongsim {
 namespace {
@@ -74,6 +78,46 @@ TEST(Coverpoints, CountMergeAndFile) {
   EXPECT_THROW((void)Coverpoints::read(file), Error);
   std::filesystem::remove(file);
   EXPECT_EQ(Coverpoints::read(file).size(), 0U);  // none yet
+}
+
+// A line waiver leaves out the points it matches (file, first line of the statements, hierarchy)
+// while they are unreached, and makes a reached one an error naming its reason.
+TEST(LineWaivers, LeaveOutUnreachedPointsAndFireWhenReached) {
+  const auto key = [](int line, const std::string& hier) {  // "\x01" "f": \x01f is one escape
+    return fmt::format(
+        "\x01page\x02v_line/fx_resize\x01"
+        "f\x02/src/rtl/common/fx_resize.sv\x01l\x02{}"
+        "\x01S\x02{}\x01h\x02{}",
+        line - 1, line, hier);
+  };
+  const std::vector<LineWaiver> waivers{
+      {R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81, "value.low: never negative"}};
+  std::map<std::string, std::uint64_t> points{{key(80, "top.q.g_channel[0].u_value.u"), 0},
+                                              {key(78, "top.q.g_channel[0].u_value.u"), 4},
+                                              {key(80, "top.q.u_other.u"), 0}};
+  const CoverageSummary s = count_coverage_points(points, waivers);
+  EXPECT_EQ(s.line_waived, 1U);  // the u_value point at 80; not line 78, not another instance
+  EXPECT_EQ(s.line_points, 2U);
+  EXPECT_EQ(s.line_hit, 1U);
+  points[key(80, "top.q.g_channel[0].u_value.u")] = 1;
+  const std::string e = testing::ErrorOf([&] { (void)count_coverage_points(points, waivers); });
+  EXPECT_NE(e.find("is waived (value.low: never negative) but was reached"), std::string::npos)
+      << e;
+}
+
+// A stall-pattern class counts a run only where the pattern acted: an always-active periodic
+// source withheld nothing.
+TEST(StallClasses, CountOnlyPatternsThatActed) {
+  Coverpoints p;
+  declare_stall_classes(p);
+  stall_class_hit(p, StallPattern::parse("periodic:1"), StallPattern::parse("random:0.5"), 0, 7);
+  stall_class_hit(p, StallPattern{}, StallPattern::parse("long:10:20"), 0, 0);
+  EXPECT_EQ(p.holes(), (std::vector<std::string>{"stall.source.periodic", "stall.source.random",
+                                                 "stall.source.long", "stall.sink.none",
+                                                 "stall.sink.periodic", "stall.sink.long"}));
+  stall_class_hit(p, StallPattern::parse("periodic:10"), StallPattern{}, 3, 0);
+  EXPECT_EQ(p.holes(), (std::vector<std::string>{"stall.source.random", "stall.source.long",
+                                                 "stall.sink.periodic", "stall.sink.long"}));
 }
 
 }  // namespace

@@ -2,13 +2,14 @@
 # Issue 19: the frame's clocks that `render --backend rtl` measures on every unit method equal
 # what the cycle model gives on the model backend (the render itself refuses a disagreement, and
 # its RTL outputs must equal the model's; this checks the reported numbers end to end), and the
-# breakdown adds up. The teapot, every unit kind: quadratic walker, Lyon, Kuijk-Blake.
+# breakdown adds up. The teapot, every unit kind: quadratic walker, Lyon, Kuijk-Blake, and the
+# composed shade_lyon (lyon-k2-tri: the walker with Lyon's unit behind it).
 #   tests/frame_cycles_test.sh BUILD_DIR
 set -euo pipefail
 phongsim="$1/phongsim"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/phongsim-frame.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-methods=gouraud,quadratic,lyon-k2,lyon-fig8-k1,kb-onevec
+methods=gouraud,quadratic,lyon-k2,lyon-fig8-k1,kb-onevec,lyon-k2-tri
 for backend in rtl model; do
   "$phongsim" render --scene teapot --method "$methods" --backend "$backend" --no-build \
     --out "$tmp/$backend" --json "$tmp/$backend.json" >/dev/null
@@ -29,7 +30,7 @@ for r, m in zip(rtl, model):
     assert f["cycles"] == sum(f[k] for k in parts), f"{name}: {f}"
     assert f["cycles"] > f["pixels"] > 1000, f"{name}: {f}"
     assert f["pixels_per_clock"] == f["pixels"] / f["cycles"], f"{name}: {f}"
-    if name in ("gouraud", "quadratic"):  # a row set-up cycle per row, some rows empty
+    if name in ("gouraud", "quadratic", "lyon-k2-tri"):  # a set-up clock per row, some rows empty
         assert f["setup_cycles"] > 0 and f["empty_row_cycles"] > 0, f"{name}: {f}"
     if name == "kb-onevec":  # three channel spans per pixel, one output per clock
         assert f["outputs"] == 3 * f["pixels"], f"{name}: {f}"
@@ -41,7 +42,7 @@ python3 - "$tmp/model.json" "$tmp/model/teapot_triangle_cycles.csv" <<'PY'
 import csv, json, sys
 frames = {m["method"]: m["frame"] for m in json.load(open(sys.argv[1]))["methods"]}
 rows = list(csv.DictReader(open(sys.argv[2])))
-for method in ("gouraud", "quadratic"):
+for method in ("gouraud", "quadratic", "lyon-k2-tri"):
     mine = [r for r in rows if r["method"] == method]
     f = frames[method]
     assert sum(int(r["pixels"]) for r in mine) == f["pixels"], method
@@ -50,6 +51,11 @@ for method in ("gouraud", "quadratic"):
         assert c == p + int(r["setup_cycles"]) + int(r["empty_row_cycles"]) and c > p, r
     assert sum(int(r["cycles"]) for r in mine) + f["fill_cycles"] >= f["cycles"], method
     print(f"ok: {method}: {len(mine)} triangles")
-assert {r["method"] for r in rows} == {"gouraud", "quadratic"}, "only walker methods"
+assert {r["method"] for r in rows} == {"gouraud", "quadratic", "lyon-k2-tri"}, "only walker methods"
+# The composed pipeline is the walker's clocks plus Lyon's 15 stages (light and viewer at
+# infinity: one program per triangle), and shades the teapot exactly as Lyon's unit alone.
+assert frames["lyon-k2-tri"]["cycles"] == frames["gouraud"]["cycles"] + 15, frames
 PY
+cmp "$tmp/rtl/teapot_lyon-k2.png" "$tmp/rtl/teapot_lyon-k2-tri.png" ||
+  { echo "FAIL: lyon-k2-tri differs from lyon-k2 on the teapot"; exit 1; }
 [ -s "$tmp/model/teapot_triangle_cycles.png" ] || { echo "FAIL: no triangle cycles plot"; exit 1; }

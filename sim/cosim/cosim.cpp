@@ -410,6 +410,7 @@ struct MainRun {
   Phase last;                                         // the failing shard's, or the last one's
   Shard shard;                                        // which
   std::uint64_t inputs = 0, outputs = 0, cycles = 0;  // summed up to it
+  std::uint64_t source_idle = 0, sink_stalled = 0;    // likewise
   ContractCounts contract;                            // likewise
 };
 
@@ -480,6 +481,8 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
     run.inputs += phases[k].harness.inputs;
     run.outputs += phases[k].harness.outputs;
     run.cycles += phases[k].harness.cycles;
+    run.source_idle += phases[k].harness.source_idle_cycles;
+    run.sink_stalled += phases[k].harness.sink_stall_cycles;
     run.contract.add(phases[k].contract);
   }
   run.last = std::move(phases[last]);
@@ -580,6 +583,8 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   r.vectors = run.inputs;
   r.outputs = run.outputs - (rejects_an_output(main.kind) ? 1 : 0);
   r.cycles = run.cycles;
+  r.source_idle_cycles = run.source_idle;
+  r.sink_stall_cycles = run.sink_stalled;
   if (subject.contract.defined()) {
     r.contract_clauses = subject.contract.clauses();
     r.contract = run.contract;

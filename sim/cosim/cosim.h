@@ -85,6 +85,10 @@ struct CosimReport {
   std::string contract_text;  // InputContract::summary of the counts, for the summary line
   std::uint64_t mismatches = 0;
   std::uint64_t cycles = 0;  // main run
+  // The main run's stall patterns at work (HarnessResult): what the stall-pattern coverpoints
+  // count.
+  std::uint64_t source_idle_cycles = 0;
+  std::uint64_t sink_stall_cycles = 0;
   // From the stall-free measurement run (0 when it did not run: measured false).
   bool measured = false;
   double throughput = 0.0;  // outputs per clock in steady state

@@ -90,18 +90,9 @@ std::string first_lines(const std::string& text) {
 
 }  // namespace
 
-CoverageSummary merge_coverage(const fs::path& dir, std::span<const LineWaiver> waivers) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir / "data", ec)) {
-    if (e.path().extension() == ".dat") files.push_back(e.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  if (files.empty()) throw Error(fmt::format("{}: no coverage data", (dir / "data").string()));
+CoverageSummary count_coverage_points(const std::map<std::string, std::uint64_t>& points,
+                                      std::span<const LineWaiver> waivers) {
   CoverageSummary s;
-  s.files = files.size();
-  std::map<std::string, std::uint64_t> points;
-  for (const auto& f : files) read_points(f, points);
   std::vector<std::regex> res;
   for (const LineWaiver& w : waivers) res.emplace_back(w.hier);
   for (const auto& [key, count] : points) {
@@ -122,6 +113,21 @@ CoverageSummary merge_coverage(const fs::path& dir, std::span<const LineWaiver> 
       s.line_hit += count > 0 ? 1 : 0;
     }
   }
+  return s;
+}
+
+CoverageSummary merge_coverage(const fs::path& dir, std::span<const LineWaiver> waivers) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir / "data", ec)) {
+    if (e.path().extension() == ".dat") files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw Error(fmt::format("{}: no coverage data", (dir / "data").string()));
+  std::map<std::string, std::uint64_t> points;
+  for (const auto& f : files) read_points(f, points);
+  CoverageSummary s = count_coverage_points(points, waivers);
+  s.files = files.size();
   const std::string info = (dir / "coverage.info").string();
   std::vector<std::string> merge{"verilator_coverage", "--write-info", info};
   merge.insert(merge.end(), files.begin(), files.end());

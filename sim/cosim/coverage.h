@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <span>
 #include <string>
 
@@ -42,6 +43,12 @@ struct CoverageSummary {
 // The prefix a run's DUTs write their files under (RtlLibrary::create): DIR/data/<time>-<pid>-,
 // unique per phongsim process. Creates DIR/data.
 [[nodiscard]] std::string coverage_prefix(const std::filesystem::path& dir);
+
+// Counts points (Verilator coverage keys, "\x01name\x02value..." with page, f, l, S, h, and
+// their counts summed over files) into a summary, files 0: merge_coverage()'s counting. Error
+// when a point a waiver matches was reached.
+[[nodiscard]] CoverageSummary count_coverage_points(
+    const std::map<std::string, std::uint64_t>& points, std::span<const LineWaiver> waivers);
 
 // Merges DIR/data/*.dat into DIR/coverage.info and DIR/html (replacing both) and counts the
 // points, each point's count summed over the files, the line points `waivers` match left out (the

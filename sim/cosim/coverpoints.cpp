@@ -174,9 +174,15 @@ void declare_stall_classes(Coverpoints& points) {
   }
 }
 
-void stall_class_hit(Coverpoints& points, const StallPattern& source, const StallPattern& sink) {
-  points.hit("stall.source." + kind(source));
-  points.hit("stall.sink." + kind(sink));
+void stall_class_hit(Coverpoints& points, const StallPattern& source, const StallPattern& sink,
+                     std::uint64_t source_idle, std::uint64_t sink_stalled) {
+  // A pattern that never acted (too few vectors, an always-active bit pattern) is not its class.
+  if (source.never_stalls() || source_idle > 0) {
+    points.hit("stall.source." + kind(source));
+  }
+  if (sink.never_stalls() || sink_stalled > 0) {
+    points.hit("stall.sink." + kind(sink));
+  }
 }
 
 Clamp01Output::Clamp01Output(CoverpointSampler& sampler, fx::Format acc, fx::Format out,

@@ -118,8 +118,11 @@ void count_coverpoints(CoverpointSampler& sampler, const PipelineModel& model,
 
 // The stall-pattern classes: `stall.source.<kind>` and `stall.sink.<kind>` for every kind of
 // StallPattern (none, periodic, random, long), declared in `points`; stall_class_hit() counts the
-// two a run with (`source`, `sink`) falls into.
+// two a run with (`source`, `sink`) falls into where its patterns acted: the source withheld an
+// input (`source_idle` cycles) or an output waited for the sink (`sink_stalled` cycles); `none`
+// counts always.
 void declare_stall_classes(Coverpoints& points);
-void stall_class_hit(Coverpoints& points, const StallPattern& source, const StallPattern& sink);
+void stall_class_hit(Coverpoints& points, const StallPattern& source, const StallPattern& sink,
+                     std::uint64_t source_idle, std::uint64_t sink_stalled);
 
 }  // namespace phongsim

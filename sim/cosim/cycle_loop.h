@@ -93,6 +93,8 @@ struct CycleState {
   std::uint64_t last_activity = 0;  // last handshake, not reset by finishing (drain rule)
   std::uint64_t finish_cycles = 0;  // the run's length: set when it finished (before the tail)
   std::uint64_t tail_end = 0;
+  std::uint64_t source_idle = 0;   // cycles the source pattern withheld the next input
+  std::uint64_t sink_stalled = 0;  // cycles an output waited for the sink
   bool presenting = false;
   bool inputs_done = false;
   bool output_held = false;
@@ -128,6 +130,8 @@ void run_cycles(Dut& dut, CycleBatch& b, CycleState& st) {
         b.stop = LoopStop::need_inputs;
         return;
       }
+    } else if (!source_active && !st.presenting && !st.inputs_done) {
+      ++st.source_idle;
     }
     if (b.trace_path != nullptr) {
       if (!st.tracing && c == b.trace_from) {
@@ -153,7 +157,10 @@ void run_cycles(Dut& dut, CycleBatch& b, CycleState& st) {
       return;
     }
     st.output_held = out_valid && !ready;
-    if (st.output_held) std::copy(out, out + n_out, b.held);
+    if (st.output_held) {
+      std::copy(out, out + n_out, b.held);
+      ++st.sink_stalled;
+    }
     if (out_valid && ready) {
       if (st.outputs == 0) st.first_output_cycle = c;
       st.last_output_cycle = c;

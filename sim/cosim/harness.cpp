@@ -79,6 +79,8 @@ HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t out
   dut.reset();
   while (true) {
     dut.run(b, st);
+    r.source_idle_cycles = st.source_idle;
+    r.sink_stall_cycles = st.sink_stalled;
     const std::uint64_t inputs_before = st.inputs - b.accepts_written;
     const std::uint64_t outputs_before = st.outputs - b.outputs_written;
     const std::size_t good =

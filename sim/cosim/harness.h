@@ -67,6 +67,10 @@ struct HarnessResult {
   std::uint64_t first_output_cycle = 0;
   std::uint64_t last_output_cycle = 0;
   std::optional<std::uint64_t> waiting_input;  // on deadlock: input presented but not accepted
+  // The stall patterns at work: cycles the source withheld an input it had, cycles an output
+  // waited for the sink.
+  std::uint64_t source_idle_cycles = 0;
+  std::uint64_t sink_stall_cycles = 0;
 };
 
 // Resets the DUT and runs until the run is finished (every input accepted and every output due
