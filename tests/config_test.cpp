@@ -360,8 +360,9 @@ TEST(Pipelines, FindPipeline) {
   EXPECT_EQ(phongsim::find_pipeline("lyon").name, "lyon");
   ASSERT_EQ(phongsim::pipelines().size(), 7u);
   EXPECT_EQ(phongsim::pipelines()[0].name, "lirp");
-  EXPECT_EQ(ErrorOf([] { (void)phongsim::find_pipeline("nope"); }),
-            "unknown pipeline 'nope' (known: lirp, lyon, kb, quad, shade_lyon, shade_quad, shade_kb)");
+  EXPECT_EQ(
+      ErrorOf([] { (void)phongsim::find_pipeline("nope"); }),
+      "unknown pipeline 'nope' (known: lirp, lyon, kb, quad, shade_lyon, shade_quad, shade_kb)");
   EXPECT_EQ(ErrorOf([] { (void)phongsim::find_pipeline(""); }),
             "unknown pipeline '' (known: lirp, lyon, kb, quad, shade_lyon, shade_quad, shade_kb)");
 }

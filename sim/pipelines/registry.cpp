@@ -10,17 +10,16 @@
 #include "sim/pipelines/lirp.h"
 #include "sim/pipelines/lyon.h"
 #include "sim/pipelines/quad.h"
+#include "sim/pipelines/shade_kb.h"
 #include "sim/pipelines/shade_lyon.h"
 #include "sim/pipelines/shade_quad.h"
-#include "sim/pipelines/shade_kb.h"
 
 namespace phongsim {
 
 std::span<const PipelineInfo> pipelines() {
-  static const std::vector<PipelineInfo> all{lirp_pipeline(),       lyon_pipeline(),
-                                             kb_pipeline(),         quad_pipeline(),
-                                             shade_lyon_pipeline(), shade_quad_pipeline(),
-                                             shade_kb_pipeline()};
+  static const std::vector<PipelineInfo> all{
+      lirp_pipeline(),       lyon_pipeline(),       kb_pipeline(),      quad_pipeline(),
+      shade_lyon_pipeline(), shade_quad_pipeline(), shade_kb_pipeline()};
   return all;
 }
 
