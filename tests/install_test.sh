@@ -23,7 +23,10 @@ unset PHONGSIM_ROOT PYTHONPATH
 
 # (a)
 ! grep -q -- "$src" "$prefix/bin/phongsim" || fail "the installed binary contains $src"
-(cd "$tmp" && phongsim list) | grep -q "configs/lirp/default.toml" || fail "installed list"
+# Into a file, not a pipe: `grep -q` quits at the first match and, under pipefail, a later write
+# by phongsim would fail the line with SIGPIPE.
+(cd "$tmp" && phongsim list) >"$tmp/list" 2>&1 || fail "installed list: $(cat "$tmp/list")"
+grep -q "configs/lirp/default.toml" "$tmp/list" || fail "installed list: $(cat "$tmp/list")"
 (cd "$tmp" && phongsim cosim lirp --vectors 20000 --source-idle random:0.3 --backpressure random:0.5) \
   >"$tmp/cosim" 2>&1 || fail "installed cosim: $(cat "$tmp/cosim")"
 grep -q "^PASS lirp/default: .* 0 mismatches" "$tmp/cosim" || fail "installed cosim: $(cat "$tmp/cosim")"
