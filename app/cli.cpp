@@ -189,6 +189,7 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
   RtlDesign design = design_of(l, t);
   if (t.x_init == "random") design.x_init = XInit::random;
   design.coverage = !t.coverage_prefix.empty();
+  design.coverage_toggle = t.coverage_toggle;
   Rtl rtl;
   if (!t.plugin.empty()) {
     const auto library = RtlLibrary::open_file(t.plugin, design);
@@ -214,7 +215,9 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
       rtl_duts(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing, stderr,
                &plugin, static_cast<std::uint32_t>(t.x_init_seed()), t.coverage_prefix);
   const std::string x_init =
-      std::string(design.coverage ? "; coverage" : "") +
+      std::string(!design.coverage         ? ""
+                  : design.coverage_toggle ? "; coverage"
+                                           : "; line coverage") +
       (design.x_init == XInit::random ? fmt::format("; x-init random, seed {}", t.x_seed) : "");
   if (t.rtl.empty()) {
     rtl.label = fmt::format("built-in {} ({}{})", design.top, plugin.key, x_init);

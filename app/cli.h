@@ -71,6 +71,7 @@ struct Target {
   std::uint64_t x_seed = 1;             // --x-seed, with --x-init random
   CLI::Option* x_seed_opt = nullptr;
   std::string coverage_prefix;  // cosim --coverage: the coverage plugin, files under this prefix
+  bool coverage_toggle = true;  // ... with toggle points (not with --no-toggle-coverage)
 
   // `rtl_options`: also --rtl, --top, --rtl-plugin and --no-build. `many_configs`: --config may
   // be given several times (into `configs`).

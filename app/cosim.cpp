@@ -32,6 +32,7 @@ struct CosimCli {
   std::string json;
   std::string junit;
   std::string coverage;
+  bool no_toggle = false;
   CLI::Option* vectors_opt = nullptr;
   CLI::Option* index_opt = nullptr;
 };
@@ -128,6 +129,9 @@ int run(CosimCli& c) {
     throw Error(
         "--coverage is Verilator's (line and toggle coverage): not with --simulator icarus");
   }
+  if (c.no_toggle && c.coverage.empty()) {
+    throw Error("--no-toggle-coverage goes with --coverage DIR");
+  }
   if (!c.coverage.empty() && !c.target.plugin.empty()) {
     throw Error("--coverage builds a plugin of its own: not with --rtl-plugin");
   }
@@ -156,7 +160,10 @@ int run(CosimCli& c) {
   JsonOutput json(c.json);
   if (!c.coverage.empty()) {
     const std::string prefix = coverage_prefix(c.coverage);
-    for (Target& t : targets) t.coverage_prefix = prefix;
+    for (Target& t : targets) {
+      t.coverage_prefix = prefix;
+      t.coverage_toggle = !c.no_toggle;
+    }
   }
   std::optional<OutputFile> trace_file;
   std::optional<OutputFile> junit_file;
@@ -241,15 +248,18 @@ int run(CosimCli& c) {
   if (!c.coverage.empty()) {
     coverage = merge_coverage(c.coverage, line_waivers);
     const std::filesystem::path dir = c.coverage;
-    fmt::print(
-        text,
-        "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points{}), toggles {:.1f} % "
-        "({} of {}); {}, {}\n",
-        coverage->files, coverage->files == 1 ? "" : "s", (dir / "data").string(),
-        coverage->line_percent(), coverage->line_hit, coverage->line_points,
-        coverage->line_waived == 0 ? "" : fmt::format(", {} waived", coverage->line_waived),
-        coverage->toggle_percent(), coverage->toggle_hit, coverage->toggle_points,
-        (dir / "coverage.info").string(), (dir / "html" / "index.html").string());
+    // No toggle point in DIR's data (every run there had --no-toggle-coverage): not measured.
+    const std::string toggles =
+        coverage->toggle_points == 0
+            ? "toggles not measured (--no-toggle-coverage)"
+            : fmt::format("toggles {:.1f} % ({} of {})", coverage->toggle_percent(),
+                          coverage->toggle_hit, coverage->toggle_points);
+    fmt::print(text,
+               "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points{}), {}; {}, {}\n",
+               coverage->files, coverage->files == 1 ? "" : "s", (dir / "data").string(),
+               coverage->line_percent(), coverage->line_hit, coverage->line_points,
+               coverage->line_waived == 0 ? "" : fmt::format(", {} waived", coverage->line_waived),
+               toggles, (dir / "coverage.info").string(), (dir / "html" / "index.html").string());
     // Earlier commands' counts in DIR first, so the file keeps their order.
     Coverpoints merged = Coverpoints::read(dir / "coverpoints.txt");
     merged.merge(points);
@@ -276,12 +286,17 @@ int run(CosimCli& c) {
       const std::filesystem::path dir = c.coverage;
       j["coverage"] = {
           {"line_percent", coverage->line_percent()},
-          {"toggle_percent", coverage->toggle_percent()},
+          {"toggle_percent", coverage->toggle_points == 0
+                                 ? nlohmann::ordered_json(nullptr)
+                                 : nlohmann::ordered_json(coverage->toggle_percent())},
           {"lines",
            {{"hit", coverage->line_hit},
             {"total", coverage->line_points},
             {"waived", coverage->line_waived}}},
-          {"toggles", {{"hit", coverage->toggle_hit}, {"total", coverage->toggle_points}}},
+          {"toggles", coverage->toggle_points == 0
+                          ? nlohmann::ordered_json(nullptr)
+                          : nlohmann::ordered_json({{"hit", coverage->toggle_hit},
+                                                    {"total", coverage->toggle_points}})},
           {"coverpoints",
            {{"hit", points.hit_points()},
             {"total", points.size()},
@@ -349,6 +364,9 @@ void add_cosim(CLI::App& app, Action& action) {
                   "into DIR/data; every run's there so far is merged into DIR/coverage.info (lcov) "
                   "and DIR/html; functional coverpoints, counted on the model, into "
                   "DIR/coverpoints.txt (docs/verification.md)");
+  cmd->add_flag("--no-toggle-coverage", c->no_toggle,
+                "with --coverage: line points only, no toggle points (a build several times "
+                "smaller and faster to compile and run; the JSON's toggle figures are null)");
   cmd->add_option("--junit", c->junit,
                   "write JUnit XML: one testcase per configuration x stall pattern run");
   cmd->callback([c, &action]() { action = [c]() { return run(*c); }; });

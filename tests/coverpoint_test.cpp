@@ -105,6 +105,34 @@ TEST(LineWaivers, LeaveOutUnreachedPointsAndFireWhenReached) {
       << e;
 }
 
+// Lyon's halfway configuration gives H's normalization N's parameters: Verilator makes one module
+// of u_norm_n and u_norm_h and counts its lines once, under "u_core.*": such a point is waived
+// only where the arm is waived in both (halfway: the g arms), and not in a configuration with one
+// normalization.
+TEST(LineWaivers, LyonSharedNormalizationPoint) {
+  const auto waivers_of = [](const char* config) {
+    const Config cfg = Config::load(std::filesystem::path(PHONGSIM_SOURCE_DIR) / config);
+    const auto model = make_model(find_pipeline("lyon"), cfg);
+    return find_pipeline("lyon").coverpoints(*model, cfg).line_waivers;
+  };
+  const auto key = [](int line, const std::string& hier) {
+    return fmt::format(
+        "\x01page\x02v_line/fx_resize\x01"
+        "f\x02/src/rtl/common/fx_resize.sv\x01l\x02{}"
+        "\x01S\x02{}\x01h\x02{}",
+        line - 1, line, hier);
+  };
+  const std::string shared = "top.lyon_top.u_core.*.g_approximate.u_g.u_resize";
+  const std::map<std::string, std::uint64_t> points{{key(78, shared), 0}};
+  const auto halfway = waivers_of("configs/lyon/halfway.toml");
+  EXPECT_EQ(count_coverage_points(points, halfway).line_waived, 1U);
+  EXPECT_EQ(count_coverage_points(points, waivers_of("configs/lyon/default.toml")).line_waived, 0U);
+  // One instance's point (not shared) is not waived by the shared waiver alone.
+  const std::map<std::string, std::uint64_t> other{
+      {key(78, "top.lyon_top.u_core.*.g_approximate.u_q.u_resize"), 0}};
+  EXPECT_EQ(count_coverage_points(other, halfway).line_waived, 0U);
+}
+
 // A stall-pattern class counts a run only where the pattern acted: an always-active periodic
 // source withheld nothing.
 TEST(StallClasses, CountOnlyPatternsThatActed) {

@@ -30,9 +30,6 @@ const std::vector<std::string> kVerilatorFlags = {"--assert", "-Wno-fatal", "-O3
 const std::vector<std::string> kVerilatorFlagsXRandom = {
     "--assert", "-Wno-fatal", "-O3", "-x-assign", "unique", "-x-initial", "unique"};
 
-// The coverage variant: Verilator's line (and branch) and toggle coverage points.
-const std::vector<std::string> kVerilatorCoverageFlags = {"--coverage-line", "--coverage-toggle"};
-
 // $PHONGSIM_VERILATOR_FLAGS: extra Verilator arguments, split at white space, appended to every
 // plugin's (so part of its key), e.g. "--threads 2" or "-CFLAGS -march=native"; how the defaults
 // were chosen is in docs/performance.md.
@@ -64,9 +61,9 @@ std::vector<std::string> extra_verilator_flags() {
 std::vector<std::string> verilator_flags(const RtlDesign& d) {
   std::vector<std::string> flags =
       d.x_init == XInit::random ? kVerilatorFlagsXRandom : kVerilatorFlags;
-  if (d.coverage) {
-    flags.insert(flags.end(), kVerilatorCoverageFlags.begin(), kVerilatorCoverageFlags.end());
-  }
+  // The coverage variant: Verilator's line (and branch) points, and toggle points if asked.
+  if (d.coverage) flags.emplace_back("--coverage-line");
+  if (d.coverage && d.coverage_toggle) flags.emplace_back("--coverage-toggle");
   const std::vector<std::string> extra = extra_verilator_flags();
   flags.insert(flags.end(), extra.begin(), extra.end());
   return flags;
@@ -238,7 +235,9 @@ Keyed key_of(const RtlDesign& d) {
   k.info =
       fmt::format("key {}\nname {}\ntop {}\ngflags {}\n{}{}{}{}{}", k.key, d.name, d.top, gflags,
                   d.x_init == XInit::random ? "x_init random\n" : "",
-                  d.coverage ? "coverage line toggle\n" : "",
+                  !d.coverage         ? ""
+                  : d.coverage_toggle ? "coverage line toggle\n"
+                                      : "coverage line\n",
                   extra.empty() ? "" : "verilator_extra " + extra + "\n", ports_text(d), files);
   k.adapter = adapter_source(d, k.info);
   return k;
@@ -383,9 +382,17 @@ void build_missing(const std::vector<const RtlDesign*>& designs, const std::vect
         cmake_list(files), cmake_list(gflags), cmake_list(verilator_flags(d)));
     // The coverage runtime (phongsim_add_rtl_plugin drops the copies of Verilator's runtime
     // sources verilate() adds; the shared runtime has no coverage).
+    // Its slow-path files (construction: one registration call per coverage point) -O0: GCC's
+    // optimizer spends minutes on their huge functions (lyon's with toggles: 220 s at -O3, 6 s
+    // at -O0; docs/cosim.md) for code that runs once.
     if (d.coverage) {
       lists += fmt::format(
-          "target_sources(plugin_{} PRIVATE \"${{VERILATOR_ROOT}}/include/verilated_cov.cpp\")\n",
+          "target_sources(plugin_{0} PRIVATE \"${{VERILATOR_ROOT}}/include/verilated_cov.cpp\")\n"
+          "get_target_property(slow_{0} plugin_{0} SOURCES)\n"
+          "list(FILTER slow_{0} INCLUDE REGEX \"__Slow\\\\.cpp$\")\n"
+          "if(slow_{0})\n"
+          "  set_property(SOURCE ${{slow_{0}}} APPEND_STRING PROPERTY COMPILE_FLAGS \" -O0\")\n"
+          "endif()\n",
           i);
     }
   }

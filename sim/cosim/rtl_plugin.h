@@ -49,9 +49,11 @@ struct RtlDesign {
   std::vector<RtlParam> params;              // the top's parameters
   std::vector<PortBinding> ports;
   XInit x_init = XInit::zero;
-  // A coverage variant (Verilator --coverage-line --coverage-toggle; its own key): each DUT
-  // writes its counts when destroyed (RtlLibrary::create).
+  // A coverage variant (Verilator --coverage-line, and --coverage-toggle with coverage_toggle;
+  // its own key): each DUT writes its counts when destroyed (RtlLibrary::create). Toggle points
+  // multiply the Verilated C++ (up to 30x for shade_quad), so its build and run time.
   bool coverage = false;
+  bool coverage_toggle = true;
 };
 
 // "-GPFmt=65802 -GAFmt=266 ...": the parameters as Verilator takes them.

@@ -545,6 +545,29 @@ void waive_lyon_outcome(CoverpointSampler& c, const std::string& name, const std
 
 namespace {
 
+// Where N's and H's normalizations have the same parameters (halfway, hn's formats n's),
+// Verilator makes one module of u_norm_n and u_norm_h and counts each of its lines once for both,
+// under a hierarchy with ".*" in their place ("top.lyon_top.u_core.*.g_approximate.u_g...", or
+// u_lyon in shade_lyon): such a point is waived where the arm is waived in both instances
+// (n.g.high and hn.g.high, ...).
+void waive_shared_norm_lines(CoverpointSampler& c) {
+  const auto name_of = [](const LineWaiver& w) { return w.reason.substr(0, w.reason.find(": ")); };
+  std::vector<LineWaiver> shared;
+  for (const LineWaiver& n : c.line_waivers) {
+    const std::string name = name_of(n);
+    if (name.rfind("n.", 0) != 0) continue;
+    const auto h =
+        std::find_if(c.line_waivers.begin(), c.line_waivers.end(), [&](const LineWaiver& w) {
+          return name_of(w) == "h" + name && w.first_line == n.first_line;
+        });
+    const std::string prefix = R"(\.u_norm_n\..*)";
+    if (h == c.line_waivers.end() || n.hier.rfind(prefix, 0) != 0) continue;
+    shared.push_back({R"(\.\*.*)" + n.hier.substr(prefix.size()), n.file, n.first_line, n.last_line,
+                      fmt::format("{} and h{} (one point for both)", n.reason, name)});
+  }
+  c.line_waivers.insert(c.line_waivers.end(), shared.begin(), shared.end());
+}
+
 void waive_unreachable(const LyonFormats& f, CoverpointSampler& c) {
   const auto waive = [&c](const std::string& name, const std::string& reason) {
     waive_lyon_outcome(c, name, reason);
@@ -670,6 +693,7 @@ CoverpointSampler coverpoints(const PipelineModel& model, const Config&) {
   }
   const std::size_t shape = c.points.declare(fmt::format("shape.k{}", f.k));
   waive_unreachable(f, c);
+  waive_shared_norm_lines(c);
   c.sample = [=](PipelineModel& model, std::span<const std::int64_t> in, Coverpoints& cp) {
     const auto& lm = dynamic_cast<const LyonModel&>(model);
     std::vector<LyonRqSide> s;
