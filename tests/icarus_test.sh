@@ -45,6 +45,9 @@ case "$2" in
   *)
     # quad: every vector is a triangle of up to thousands of pixels, at ~10^4 cycles/s in Icarus
     [ "$2" = quad ] && stalls[1]=20
+    # shade_quad: the same walker core and channels, framed as triangle in, pixels out; quad's
+    # directed triangles (~5*10^5 pixels) went through Icarus above, so random triangles only
+    [ "$2" = shade_quad ] && stalls+=(--no-directed)
     out=$("$phongsim" cosim "$2" --simulator icarus "${stalls[@]}" 2>&1)
     rc=$?
     printf '%s\n' "$out"
