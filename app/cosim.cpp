@@ -41,6 +41,16 @@ nlohmann::ordered_json to_json(const FieldValue& v) {
   return {{"field", v.name}, {"format", v.format}, {"raw", v.raw}, {"real", v.real}};
 }
 
+// The line points a waiver left out, each with its reason.
+nlohmann::ordered_json waived_json(const std::vector<WaivedPoint>& waived) {
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (const WaivedPoint& w : waived) {
+    a.push_back(
+        {{"file", w.file}, {"lines", w.lines}, {"instance", w.instance}, {"reason", w.reason}});
+  }
+  return a;
+}
+
 nlohmann::ordered_json to_json(const CosimFailure& f, const std::string& report) {
   nlohmann::ordered_json inputs = nlohmann::ordered_json::array();
   for (const FieldValue& v : f.inputs) inputs.push_back(to_json(v));
@@ -292,7 +302,8 @@ int run(CosimCli& c) {
           {"lines",
            {{"hit", coverage->line_hit},
             {"total", coverage->line_points},
-            {"waived", coverage->line_waived}}},
+            {"waived", coverage->line_waived},
+            {"waivers", waived_json(coverage->waived)}}},
           {"toggles", coverage->toggle_points == 0
                           ? nlohmann::ordered_json(nullptr)
                           : nlohmann::ordered_json({{"hit", coverage->toggle_hit},

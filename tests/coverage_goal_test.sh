@@ -33,6 +33,9 @@ assert doc["passed"] and doc["runs_passed"] == 16, "a run failed"
 p, l = c["coverpoints"], c["lines"]
 assert c["toggle_percent"] is None and c["toggles"] is None, c
 assert l["total"] > 0 and p["total"] > 0, c
+# Every waived line point is listed with its instance and a reason.
+assert len(l["waivers"]) == l["waived"], l
+assert all(w["file"].endswith(".sv") and w["instance"] and w["reason"] for w in l["waivers"]), l
 print(f"{sys.argv[2]}: coverpoints {p['hit']} of {p['total']} ({len(p['waivers'])} waived), "
       f"lines {c['line_percent']:.1f} % ({l['hit']} of {l['total']}; {l['waived']} waived)")
 assert p["hit"] == p["total"] and not p["holes"], ("coverpoints below 100 %", p["holes"])

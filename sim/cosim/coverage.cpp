@@ -107,6 +107,7 @@ CoverageSummary count_coverage_points(const std::map<std::string, std::uint64_t>
                                   field(key, "f"), field(key, "l"), field(key, "h"), w->reason));
         }
         ++s.line_waived;
+        s.waived.push_back({field(key, "f"), field(key, "S"), field(key, "h"), w->reason});
         continue;
       }
       ++s.line_points;

@@ -11,6 +11,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace phongsim {
 
@@ -29,11 +30,21 @@ struct LineWaiver {
   std::string reason;
 };
 
+// A line point a waiver left out: Verilator's file, statement lines ("78-79") and instance
+// hierarchy, and the waiver's reason.
+struct WaivedPoint {
+  std::string file;
+  std::string lines;
+  std::string instance;
+  std::string reason;
+};
+
 struct CoverageSummary {
   std::uint64_t files = 0;          // coverage.dat files merged
   std::uint64_t line_points = 0;    // Verilator's line and branch points (statements, if/case arms)
   std::uint64_t line_hit = 0;       // ... reached at least once
   std::uint64_t line_waived = 0;    // points a LineWaiver leaves out of the two above
+  std::vector<WaivedPoint> waived;  // ... each, in key order
   std::uint64_t toggle_points = 0;  // one per signal bit and direction (0->1, 1->0)
   std::uint64_t toggle_hit = 0;
   [[nodiscard]] double line_percent() const;    // 100 * hit / points; 0 without points
