@@ -42,12 +42,13 @@ endfunction()
 
 # phongsim_add_rtl_plugin(<target> TOP <module> ADAPTER <adapter.cpp> OUTPUT_DIR <dir>
 #                         RUNTIME <runtime target> RUNTIME_RPATH <rpath>
-#                         SOURCES <sv files...> VERILATOR_ARGS <args...>):
+#                         [COVERAGE] SOURCES <sv files...> VERILATOR_ARGS <args...>):
 # Verilates TOP from SOURCES into <dir>/<target>.so, compiled with the generated ADAPTER (which
 # binds ports to model fields) and linked with the shared Verilator runtime, found at run time
-# through RUNTIME_RPATH.
+# through RUNTIME_RPATH. COVERAGE (with --coverage-line/-toggle in VERILATOR_ARGS) compiles
+# Verilator's coverage runtime in: the shared runtime has none.
 function(phongsim_add_rtl_plugin TARGET)
-  cmake_parse_arguments(ARG "" "TOP;ADAPTER;OUTPUT_DIR;RUNTIME;RUNTIME_RPATH"
+  cmake_parse_arguments(ARG "COVERAGE" "TOP;ADAPTER;OUTPUT_DIR;RUNTIME;RUNTIME_RPATH"
                         "SOURCES;VERILATOR_ARGS" ${ARGN})
   add_library(${TARGET} MODULE "${ARG_ADAPTER}")
   set_target_properties(${TARGET} PROPERTIES
@@ -71,6 +72,32 @@ function(phongsim_add_rtl_plugin TARGET)
   # Link the shared runtime instead of the copy verilate() adds to every target.
   get_target_property(plugin_sources ${TARGET} SOURCES)
   list(FILTER plugin_sources EXCLUDE REGEX "^${VERILATOR_ROOT}/include/[^/]*\\.cpp$")
+  # Verilator writes a dozen or more small .cpp files, and each spends most of its compile time
+  # parsing the same Verilator headers: they compile as two translation units instead, one with
+  # the per-cycle code, one with the slow path (construction and initial evaluation, run once;
+  # -O0, as GCC's optimizer spends minutes on the huge functions of coverage builds). Halves a
+  # plugin's compile time (docs/cosim.md). The generated files stay sources, header-only, so
+  # that verilation runs before the two compile.
+  set(fast_includes "")
+  set(slow_includes "")
+  foreach(source IN LISTS plugin_sources)
+    if(source MATCHES "__Slow\\.cpp$")
+      string(APPEND slow_includes "#include \"${source}\"\n")
+    elseif(source MATCHES "/V${ARG_TOP}\\.dir/[^/]*\\.cpp$")
+      string(APPEND fast_includes "#include \"${source}\"\n")
+    else()
+      continue()
+    endif()
+    set_source_files_properties("${source}" PROPERTIES HEADER_FILE_ONLY ON)
+  endforeach()
+  if(ARG_COVERAGE)
+    string(APPEND slow_includes "#include \"${VERILATOR_ROOT}/include/verilated_cov.cpp\"\n")
+  endif()
+  set(unity_dir "${CMAKE_CURRENT_BINARY_DIR}/${TARGET}_unity")
+  file(WRITE "${unity_dir}/fast.cpp" "${fast_includes}")
+  file(WRITE "${unity_dir}/slow.cpp" "${slow_includes}")
+  set_source_files_properties("${unity_dir}/slow.cpp" PROPERTIES COMPILE_OPTIONS -O0)
+  list(APPEND plugin_sources "${unity_dir}/fast.cpp" "${unity_dir}/slow.cpp")
   set_property(TARGET ${TARGET} PROPERTY SOURCES ${plugin_sources})
   target_link_libraries(${TARGET} PRIVATE ${ARG_RUNTIME})
 endfunction()

@@ -375,26 +375,13 @@ void build_missing(const std::vector<const RtlDesign*>& designs, const std::vect
     std::vector<std::string> files, gflags;
     for (const fs::path& f : d.files) files.push_back(fs::absolute(f).string());
     for (const RtlParam& p : d.params) gflags.push_back(fmt::format("-G{}={}", p.name, p.value));
+    // COVERAGE: the plugin compiles Verilator's coverage runtime in (the shared runtime has none).
     lists += fmt::format(
         "phongsim_add_rtl_plugin(plugin_{} TOP {} ADAPTER \"{}\" OUTPUT_DIR \"{}\" RUNTIME runtime "
-        "RUNTIME_RPATH \"$ORIGIN/../runtime-{}\"\n  SOURCES{}\n  VERILATOR_ARGS{}{})\n",
+        "RUNTIME_RPATH \"$ORIGIN/../runtime-{}\"{}\n  SOURCES{}\n  VERILATOR_ARGS{}{})\n",
         i, d.top, adapter.string(), (work.path() / fmt::format("out_{}", i)).string(), rkey,
-        cmake_list(files), cmake_list(gflags), cmake_list(verilator_flags(d)));
-    // The coverage runtime (phongsim_add_rtl_plugin drops the copies of Verilator's runtime
-    // sources verilate() adds; the shared runtime has no coverage).
-    // Its slow-path files (construction: one registration call per coverage point) -O0: GCC's
-    // optimizer spends minutes on their huge functions (lyon's with toggles: 220 s at -O3, 6 s
-    // at -O0; docs/cosim.md) for code that runs once.
-    if (d.coverage) {
-      lists += fmt::format(
-          "target_sources(plugin_{0} PRIVATE \"${{VERILATOR_ROOT}}/include/verilated_cov.cpp\")\n"
-          "get_target_property(slow_{0} plugin_{0} SOURCES)\n"
-          "list(FILTER slow_{0} INCLUDE REGEX \"__Slow\\\\.cpp$\")\n"
-          "if(slow_{0})\n"
-          "  set_property(SOURCE ${{slow_{0}}} APPEND_STRING PROPERTY COMPILE_FLAGS \" -O0\")\n"
-          "endif()\n",
-          i);
-    }
+        d.coverage ? " COVERAGE" : "", cmake_list(files), cmake_list(gflags),
+        cmake_list(verilator_flags(d)));
   }
   { std::ofstream(work.path() / "CMakeLists.txt") << lists; }
   const unsigned jobs = std::max(1U, std::thread::hardware_concurrency());
