@@ -2,17 +2,26 @@
 # Issue 19: the frame's clocks that `render --backend rtl` measures on every unit method equal
 # what the cycle model gives on the model backend (the render itself refuses a disagreement, and
 # its RTL outputs must equal the model's; this checks the reported numbers end to end), and the
-# breakdown adds up. The teapot, every unit kind: quadratic walker, Lyon, Kuijk-Blake, and the
-# composed shade_lyon (lyon-k2-tri: the walker with Lyon's unit behind it).
+# breakdown adds up. The teapot, every unit kind: the composed pipelines (shade_quad: gouraud,
+# quadratic; shade_kb: kb-onevec; shade_lyon: lyon-k2-tri, the walker with Lyon's unit behind
+# it), Lyon's unit alone, and through --unit-config the walker alone (quad) and one Kuijk-Blake
+# engine serving the channels in turn (kb): the same images, their own clocks.
 #   tests/frame_cycles_test.sh BUILD_DIR
 set -euo pipefail
 phongsim="$1/phongsim"
+src=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/phongsim-frame.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 methods=gouraud,quadratic,lyon-k2,lyon-fig8-k1,kb-onevec,lyon-k2-tri
 for backend in rtl model; do
   "$phongsim" render --scene teapot --method "$methods" --backend "$backend" --no-build \
     --out "$tmp/$backend" --json "$tmp/$backend.json" >/dev/null
+  "$phongsim" render --scene teapot --method gouraud --backend "$backend" --no-build \
+    --unit-config "$src/configs/quad/linear.toml" --out "$tmp/quad-$backend" \
+    --json "$tmp/quad-$backend.json" >/dev/null
+  "$phongsim" render --scene teapot --method kb-onevec --backend "$backend" --no-build \
+    --unit-config "$src/configs/kb/default.toml" --out "$tmp/kb-$backend" \
+    --json "$tmp/kb-$backend.json" >/dev/null
 done
 # A float method has no unit and no frame.
 "$phongsim" render --scene teapot --method phong,gouraud --backend float --out "$tmp/float" \
@@ -32,10 +41,30 @@ for r, m in zip(rtl, model):
     assert f["pixels_per_clock"] == f["pixels"] / f["cycles"], f"{name}: {f}"
     if name in ("gouraud", "quadratic", "lyon-k2-tri"):  # a set-up clock per row, some rows empty
         assert f["setup_cycles"] > 0 and f["empty_row_cycles"] > 0, f"{name}: {f}"
-    if name == "kb-onevec":  # three channel spans per pixel, one output per clock
-        assert f["outputs"] == 3 * f["pixels"], f"{name}: {f}"
+    if name == "kb-onevec":  # shade_kb: an engine per channel, a pixel in colour per output
+        assert f["outputs"] == f["pixels"], f"{name}: {f}"
     print(f"ok: {name}: {f['cycles']} cycles, {f['pixels']} pixels")
 PY
+# The units alone: RTL clocks = cycle model; the walker's as shade_quad's (the number costs no
+# clock); one engine emits each pixel once per channel, so about three times shade_kb's clocks.
+python3 - "$tmp" <<'PY'
+import json, sys
+t = sys.argv[1]
+frame = lambda name, method: next(m["frame"] for m in json.load(open(f"{t}/{name}.json"))["methods"]
+                                  if m["method"] == method)
+for unit, method in (("quad", "gouraud"), ("kb", "kb-onevec")):
+    f, g = frame(f"{unit}-rtl", method), frame(f"{unit}-model", method)
+    assert f == g, f"{unit}: RTL {f} != cycle model {g}"
+    assert f["pixels"] == frame("rtl", method)["pixels"], (unit, f)
+assert frame("quad-rtl", "gouraud") == frame("rtl", "gouraud")
+one, three = frame("kb-rtl", "kb-onevec"), frame("rtl", "kb-onevec")
+assert one["outputs"] == 3 * one["pixels"] and one["cycles"] > 2.9 * three["cycles"], (one, three)
+print(f"ok: walker alone {frame('quad-rtl', 'gouraud')['cycles']} cycles, one engine {one['cycles']}")
+PY
+cmp "$tmp/rtl/teapot_gouraud.png" "$tmp/quad-rtl/teapot_gouraud.png" ||
+  { echo "FAIL: gouraud on the walker alone differs from shade_quad's"; exit 1; }
+cmp "$tmp/rtl/teapot_kb-onevec.png" "$tmp/kb-rtl/teapot_kb-onevec.png" ||
+  { echo "FAIL: kb-onevec on one engine differs from shade_kb's"; exit 1; }
 # Per triangle (the walker methods): every pixel once, each triangle at least its pixels plus a
 # clock per row, and with the fill at least the frame.
 python3 - "$tmp/model.json" "$tmp/model/teapot_triangle_cycles.csv" <<'PY'

@@ -461,6 +461,23 @@ TEST(RenderMethods, AllMethods) {
     EXPECT_FALSE(find_method(m.method).config.empty());
 }
 
+// --unit-config: a method runs on its built-in configuration's pipeline, and a composed
+// pipeline's methods also on the unit it is built from, alone; nothing else.
+TEST(RenderMethods, UnitPipelines) {
+  EXPECT_TRUE(method_runs_on("quadratic", "shade_quad"));
+  EXPECT_TRUE(method_runs_on("gouraud", "quad"));
+  EXPECT_TRUE(method_runs_on("kb-onevec", "shade_kb"));
+  EXPECT_TRUE(method_runs_on("kb-onevec", "kb"));
+  EXPECT_TRUE(method_runs_on("lyon-k2", "lyon"));
+  EXPECT_TRUE(method_runs_on("lyon-k2-tri", "shade_lyon"));
+  EXPECT_FALSE(method_runs_on("quadratic", "kb"));
+  EXPECT_FALSE(method_runs_on("kb-onevec", "quad"));
+  EXPECT_FALSE(method_runs_on("lyon-k2-tri", "lyon"));
+  EXPECT_FALSE(method_runs_on("lyon-k2", "shade_lyon"));
+  EXPECT_FALSE(method_runs_on("phong", "lyon"));
+  EXPECT_FALSE(method_runs_on("phong", ""));
+}
+
 TEST(RenderErrors, OneLineEach) {
   const auto error_of = [](const RenderOptions& o) {
     return testing::ErrorOf([&] { (void)render(o, Quiet); });

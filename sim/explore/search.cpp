@@ -84,9 +84,8 @@ SearchSpec load_search(const fs::path& file) {
     if (s.scene.empty() || s.method.empty()) {
       throw Error(fmt::format("{}: min_colour_correctness needs scene and method", file.string()));
     }
-    const MethodInfo& m = find_method(s.method);
     const std::string pipeline = Config::load(s.base).pipeline();
-    if (fs::path(std::string(m.config)).parent_path() != pipeline) {
+    if (!method_runs_on(s.method, pipeline)) {
       throw Error(fmt::format("{}: method '{}' does not run on a {} unit", file.string(), s.method,
                               pipeline));
     }

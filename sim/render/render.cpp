@@ -63,15 +63,16 @@ const std::vector<Method>& methods() {
       {{"flat", "one colour per triangle: the lighting model at the centroid, face normal", "",
         true},
        Kind::flat},
-      {{"gouraud", "lighting at the vertices, colour interpolated linearly (unit: quad/linear)",
-        "quad/linear", true},
+      {{"gouraud",
+        "lighting at the vertices, colour interpolated linearly (unit: shade_quad/linear)",
+        "shade_quad/linear", true},
        Kind::gouraud},
       {{"gouraud4", "Gouraud on the 4x-subdivided mesh (vertices and edge midpoints)", "", true},
        Kind::gouraud4},
       {{"quadratic",
         "Vlasic 4.3: lighting at vertices and edge midpoints, eq. 4.1 per pixel "
-        "(unit: quad/default)",
-        "quad/default", true},
+        "(unit: shade_quad/default)",
+        "shade_quad/default", true},
        Kind::quadratic},
       {{"phong", "Phong (R.L)^n, normal normalized per pixel (Figure 9 row 1)", "", false},
        Kind::pixel,
@@ -140,8 +141,9 @@ const std::vector<Method>& methods() {
         "", true},
        Kind::kb_decompose},
       {{"kb-onevec",
-        "Kuijk-Blake eq. 4: one linear angle per span, quadratic cos^n (unit: kb engine)",
-        "kb/default", true},
+        "Kuijk-Blake eq. 4: one linear angle per span, quadratic cos^n (unit: shade_kb, an "
+        "engine per channel)",
+        "shade_kb/default", true},
        Kind::kb_one_vector},
       {{"env-map",
         "Vlasic 5.1: spherical environment map of the lights (eqs. 5.1-5.3), coordinates "
@@ -383,6 +385,13 @@ Backend resolve(const Method& m, Backend asked) {
   return asked;
 }
 
+// method_runs_on (render.h).
+bool runs_on(const Method& m, std::string_view pipeline) {
+  const std::string own = fs::path(std::string(m.info.config)).parent_path().string();
+  return !own.empty() && (pipeline == own || (own == "shade_quad" && pipeline == "quad") ||
+                          (own == "shade_kb" && pipeline == "kb"));
+}
+
 std::vector<bool> mask_of(const Frame& f) {
   std::vector<bool> mask(f.owner.size());
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = f.owner[i] >= 0;
@@ -431,6 +440,10 @@ const std::vector<MethodInfo>& render_methods() {
 }
 
 const MethodInfo& find_method(std::string_view name) { return method(name).info; }
+
+bool method_runs_on(std::string_view name, std::string_view pipeline) {
+  return runs_on(method(name), pipeline);
+}
 
 RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   // Validate before any work.
@@ -487,16 +500,14 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
     throw Error(fmt::format("reference '{}' needs a mesh scene", ref_name));
   }
   // Units (loading them finds or builds the plugins before rendering starts). A method's unit
-  // is its built-in configuration, or options.unit_config when that is of the same pipeline.
+  // is its built-in configuration, or options.unit_config when the method runs on its pipeline.
   std::string override_pipeline;
   if (!o.unit_config.empty()) {
     override_pipeline = Config::load(o.unit_config).pipeline();
     // A configuration no chosen method would run is a mistake, not something to ignore.
     bool used = false;
     for (std::size_t i = 0; i < chosen.size(); ++i) {
-      used = used ||
-             (backends[i] != Backend::float_ref &&
-              fs::path(std::string(chosen[i]->info.config)).parent_path() == override_pipeline);
+      used = used || (backends[i] != Backend::float_ref && runs_on(*chosen[i], override_pipeline));
     }
     if (!used) {
       throw Error(fmt::format(
@@ -507,8 +518,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
   }
   const auto unit_path = [&](const Method& m) {
     const fs::path built_in = data_root() / "configs" / (std::string(m.info.config) + ".toml");
-    const bool replace = !override_pipeline.empty() &&
-                         fs::path(std::string(m.info.config)).parent_path() == override_pipeline;
+    const bool replace = !override_pipeline.empty() && runs_on(m, override_pipeline);
     return (replace ? fs::path(o.unit_config) : built_in).string();
   };
   std::map<std::pair<std::string, Backend>, std::unique_ptr<Unit>> units;

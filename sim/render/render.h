@@ -40,6 +40,10 @@ struct MethodInfo {
 };
 [[nodiscard]] const std::vector<MethodInfo>& render_methods();
 [[nodiscard]] const MethodInfo& find_method(std::string_view name);  // Error lists the names
+// Whether method `name` can run on a unit of `pipeline` (render's --unit-config): its built-in
+// configuration's pipeline, or the unit a composed one is built from (quad for shade_quad's
+// walker methods, kb for shade_kb's kb-onevec), which then runs alone.
+[[nodiscard]] bool method_runs_on(std::string_view name, std::string_view pipeline);
 
 struct RenderOptions {
   std::string scene = "shinyballs";  // a built-in scene name or a scene file (.toml)

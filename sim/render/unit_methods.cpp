@@ -16,6 +16,7 @@
 #include "model/shade_lyon.h"
 #include "sim/cosim/harness.h"
 #include "sim/pipelines/registry.h"
+#include "sim/pipelines/shade_kb.h"
 
 namespace phongsim::shading {
 
@@ -123,6 +124,7 @@ namespace {
 // A walker unit's programs, one per triangle (and pass), with the pixels the frame's coverage
 // says each emits: the unit must emit exactly those (its pixels come back program by program).
 struct TrianglePrograms {
+  static constexpr int kTriMask = 0xffff;  // the triangle pipelines' 16-bit `tri`
   std::vector<std::int64_t> words;
   std::vector<int> tris;
   std::vector<std::size_t> counts;
@@ -134,14 +136,24 @@ struct TrianglePrograms {
     counts.push_back(f.coverage[t].size());
     pixels += counts.back();
   }
-  // Every output (`fields` values per pixel); Error when the unit's pixels are not the coverage.
-  [[nodiscard]] std::vector<std::int64_t> run(Unit& unit, std::size_t fields,
+  // Every output (`fields` values per pixel); Error when the unit's pixels are not the coverage
+  // or, for a numbered pipeline (its pixels' third field the triangle's number, kTriMask bits),
+  // a pixel's number is not its program's triangle.
+  [[nodiscard]] std::vector<std::int64_t> run(Unit& unit, std::size_t fields, bool numbered,
                                               const RenderProgress& progress,
                                               std::string_view what) const {
     std::vector<std::int64_t> out = unit.run(words, progress, what);
     if (out.size() != fields * pixels) {
       throw Error(fmt::format("{}: the unit emitted {} pixels, coverage says {}", what,
                               out.size() / fields, pixels));
+    }
+    for (std::size_t k = 0, at = 0; numbered && k < tris.size(); ++k) {
+      for (std::size_t i = 0; i < counts[k]; ++i, at += fields) {
+        if (out[at + 2] != (tris[k] & kTriMask)) {
+          throw Error(fmt::format("{}: a pixel of triangle {} came out numbered {}", what, tris[k],
+                                  out[at + 2]));
+        }
+      }
     }
     return out;
   }
@@ -167,6 +179,10 @@ UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgr
   // The framebuffer's 255 means 1.0, the unit's largest output (255/256 for 0.8) does: colours
   // go in scaled by that top value, so the output's raw bits are the framebuffer value.
   const double top = fx::to_real(qf.out.max_raw(), qf.out);
+  // shade_quad (triangle in, pixels out) takes the triangle's number after the walker's program
+  // and returns it with every pixel, (x, y, tri, R, G, B); quad, the walker alone, (x, y, R, G, B).
+  const bool numbered = unit.config().pipeline() == "shade_quad";
+  const std::size_t fields = numbered ? 6 : 5;
   const std::vector<bool>& visible = f.visible;
   TrianglePrograms programs;
   for (std::size_t t = 0; t < visible.size(); ++t) {
@@ -179,23 +195,25 @@ UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit, const RenderProgr
       colour[ch] = linear ? quad::linear_coefficients(r[0], r[2], r[4]) : quad::coefficients(r);
     }
     // Clipped to the image, so the unit emits exactly the triangle's coverage.
-    programs.add(
-        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height})), f,
-        t);
+    std::vector<std::int64_t> words =
+        QuadModel::words(quad_program(f.screen[t], colour, qf, QuadScreen{f.width, f.height}));
+    if (numbered) words.push_back(static_cast<std::int64_t>(t) & TrianglePrograms::kTriMask);
+    programs.add(words, f, t);
   }
-  const std::vector<std::int64_t> out = programs.run(unit, 5, progress, what);
+  const std::vector<std::int64_t> out = programs.run(unit, fields, numbered, progress, what);
   Image img = blank(f);
   std::size_t at = 0;
   for (std::size_t k = 0; k < programs.tris.size(); ++k) {
-    for (std::size_t i = 0; i < programs.counts[k]; ++i, at += 5) {
+    for (std::size_t i = 0; i < programs.counts[k]; ++i, at += fields) {
       const auto x = static_cast<int>(out[at]);
       const auto y = static_cast<int>(out[at + 1]);
       if (x < 0 || y < 0 || x >= f.width || y >= f.height) continue;
       if (!f.shows(static_cast<std::size_t>(programs.tris[k]), x, y)) continue;
       const double full = static_cast<double>(qf.out.max_raw());
+      const std::size_t rgb = at + fields - 3;
       img.at(x, y) =
-          to_rgb8({static_cast<double>(out[at + 2]) / full, static_cast<double>(out[at + 3]) / full,
-                   static_cast<double>(out[at + 4]) / full});
+          to_rgb8({static_cast<double>(out[rgb]) / full, static_cast<double>(out[rgb + 1]) / full,
+                   static_cast<double>(out[rgb + 2]) / full});
     }
   }
   return {std::move(img), programs.frame(unit)};
@@ -228,14 +246,14 @@ UnitImage triangle_lyon_unit(const Frame& f, Unit& unit, const RenderProgress& p
     const Vec3 v = f.lighting.v_at(centroid);
     in.v = {v.x, v.y, v.z};
     in.shin = shin;
-    in.id = static_cast<std::int64_t>(t & 0xffff);
+    in.id = static_cast<std::int64_t>(t) & TrianglePrograms::kTriMask;
     for (const Light& light : lights) {
       const Vec3 l = Lighting::l_at(light, centroid);
       in.l = {l.x, l.y, l.z};
       programs.add(m.words(in, QuadScreen{f.width, f.height}), f, t);  // clipped to the image
     }
   }
-  const std::vector<std::int64_t> out = programs.run(unit, 5, progress, what);
+  const std::vector<std::int64_t> out = programs.run(unit, 5, true, progress, what);
   // Each visible pixel's amounts, light by light, from the program of its triangle and light.
   std::vector<Amounts> amounts(f.fragments.size() * nl);
   std::size_t at = 0;
@@ -269,6 +287,10 @@ UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
   const KbSetupOptions so = KbSetupOptions::from_config(unit.config());
   const double top = fx::to_real(kf.out.max_raw(), kf.out);
   const kb::QuadParams ab1 = kb_ab(1), abn = kb_ab(4 * f.material.shininess);
+  // shade_kb takes a span's three channel programs side by side in span words (x0, y in the
+  // header) and returns (x, y, R, G, B) per pixel; kb, one engine alone, takes the programs one
+  // channel after the other and returns each channel's pixels (value, last) in turn.
+  const bool colour = unit.config().pipeline() == "shade_kb";
   const std::vector<bool>& visible = f.visible;
   std::vector<std::int64_t> words;
   struct Placed {
@@ -287,6 +309,7 @@ UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
         angles.emplace_back(kb::one_vector(e.n1, e.n2, le.l1, le.l2),
                             kb::one_vector(e.n1, e.n2, le.h1, le.h2));
       }
+      std::array<std::vector<std::vector<std::int64_t>>, 3> programs;
       for (int ch = 0; ch < 3; ++ch) {
         KbSpan span;
         span.length = length;
@@ -301,18 +324,26 @@ UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
                                 lc * channel(f.material.specular, ch) *
                                     std::pow(std::max(s.scale, 0.0), 4 * f.material.shininess)});
         }
-        for (const auto& w : kb_program(span, so.policy, kf))
-          words.insert(words.end(), w.begin(), w.end());
+        programs[static_cast<std::size_t>(ch)] = kb_program(span, so.policy, kf);
+      }
+      const auto put = [&words](const std::vector<std::vector<std::int64_t>>& program) {
+        for (const auto& w : program) words.insert(words.end(), w.begin(), w.end());
+      };
+      if (colour) {
+        put(shade_kb_span_words(programs, e.x0, e.y));
+      } else {
+        for (const auto& program : programs) put(program);
       }
       placed.push_back({static_cast<int>(t), e.y, e.x0, e.x1});
     }
   }
   const std::vector<std::int64_t> out = unit.run(words, progress, what);
-  std::size_t expected = 0;
-  for (const Placed& p : placed) expected += 3 * static_cast<std::size_t>(p.x1 - p.x0 + 1);
-  if (out.size() != 2 * expected) {
-    throw Error(fmt::format("{}: the engine emitted {} pixels, the spans have {}", what,
-                            out.size() / 2, expected));
+  std::size_t pixels = 0;
+  for (const Placed& p : placed) pixels += static_cast<std::size_t>(p.x1 - p.x0 + 1);
+  const std::size_t per_pixel = colour ? 5 : 3 * 2;  // (x, y, R, G, B); 3 x (value, last)
+  if (out.size() != per_pixel * pixels) {
+    throw Error(fmt::format("{}: the unit emitted {} pixels, the spans have {}", what,
+                            out.size() / per_pixel, pixels));
   }
   Image img = blank(f);
   const double full = static_cast<double>(kf.out.max_raw());
@@ -321,16 +352,21 @@ UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
     const std::size_t length = static_cast<std::size_t>(p.x1 - p.x0 + 1);
     for (std::size_t i = 0; i < length; ++i) {
       const int x = p.x0 + static_cast<int>(i);
+      const std::size_t pixel = at + 5 * i;
+      if (colour && (out[pixel] != x || out[pixel + 1] != p.y)) {
+        throw Error(fmt::format("{}: span pixel ({}, {}) came out at ({}, {})", what, x, p.y,
+                                out[pixel], out[pixel + 1]));
+      }
       if (!f.shows(static_cast<std::size_t>(p.tri), x, p.y)) continue;
       const auto value = [&](int ch) {
-        return static_cast<double>(out[at + 2 * (static_cast<std::size_t>(ch) * length + i)]) /
-               full;
+        const auto c = static_cast<std::size_t>(ch);
+        return static_cast<double>(out[colour ? pixel + 2 + c : at + 2 * (c * length + i)]) / full;
       };
       img.at(x, p.y) = to_rgb8({value(0), value(1), value(2)});
     }
-    at += 2 * 3 * length;
+    at += per_pixel * length;
   }
-  return {std::move(img), {unit.frame(), expected / 3, {}}};  // a span pixel per channel
+  return {std::move(img), {unit.frame(), pixels, {}}};
 }
 
 }  // namespace phongsim::shading

@@ -62,9 +62,10 @@ struct UnitImage {
 [[nodiscard]] UnitImage pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
                                    std::string_view what);
 
-// Vertex methods through the quadratic unit: one program per triangle with a visible pixel
-// (`linear`, Gouraud: the plane through the vertex colours; else the quadratic through the six
-// samples); the unit's pixels are kept where the triangle is the visible surface.
+// Vertex methods through the quadratic walker (shade_quad, or quad alone): one program per
+// triangle with a visible pixel (`linear`, Gouraud: the plane through the vertex colours; else
+// the quadratic through the six samples); the unit's pixels are kept where the triangle is the
+// visible surface.
 [[nodiscard]] UnitImage vertex_unit(bool linear, const Frame& f, Unit& unit,
                                     const RenderProgress& progress, std::string_view what);
 
@@ -75,9 +76,10 @@ struct UnitImage {
 [[nodiscard]] UnitImage triangle_lyon_unit(const Frame& f, Unit& unit,
                                            const RenderProgress& progress, std::string_view what);
 
-// The one-vector method (Kuijk–Blake eq. 4) through the Kuijk–Blake engine: per span and colour
-// channel one program whose terms are the ambient (a constant: angle 0, rate 0), and per light
-// the diffuse and the specular one-vector terms scaled by the light's and the material's colour.
+// The one-vector method (Kuijk–Blake eq. 4) through the Kuijk–Blake engines (shade_kb: one per
+// channel; kb: one engine, the channels in turn): per span and colour channel one program whose
+// terms are the ambient (a constant: angle 0, rate 0), and per light the diffuse and the specular
+// one-vector terms scaled by the light's and the material's colour.
 [[nodiscard]] UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
                                 std::string_view what);
 
