@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace phongsim {
 
 fx::Format ShadeLyonFormats::channel_format(fx::Format vec) {
@@ -55,24 +57,34 @@ std::size_t ShadeLyonModel::pixels(std::span<const std::int64_t> in,
                                                 : walker_.walk(program, walker_out);
   const std::int64_t half = std::int64_t{1} << f_.lyon.vec.frac_bits;       // 2c - 1 = C - 2^F
   const std::span<const std::int64_t> vls = in.subspan(kProgramFields, 7);  // v, l, shin
-  for (std::size_t p = 0; p < n; ++p) {
+  const std::size_t at = lyon_in.size();
+  lyon_in.resize(at + 14 * n);
+  std::int64_t* v = lyon_in.data() + at;
+  for (std::size_t p = 0; p < n; ++p, v += 14) {  // n0, n1, a, v, l, shin
     const std::int64_t* px = walker_out.data() + base + 5 * p;
-    const std::int64_t np[3] = {px[2] - half, px[3] - half, px[4] - half};
-    // n0, n1, a, v, l, shin
-    lyon_in.insert(lyon_in.end(), {np[0], np[1], np[2], np[0], np[1], np[2], 0});
-    lyon_in.insert(lyon_in.end(), vls.begin(), vls.end());
+    for (int c = 0; c < 3; ++c) v[c] = v[3 + c] = px[2 + c] - half;
+    v[6] = 0;
+    std::copy(vls.begin(), vls.end(), v + 7);
   }
   return n;
 }
 
 std::size_t ShadeLyonModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  std::vector<std::int64_t> walked, lyon_in, shaded;
-  const std::size_t n = pixels(in, walked, lyon_in);
-  (void)lyon_.eval_batch(lyon_in, shaded);
+  walked_.clear();
+  lyon_in_.clear();
+  shaded_.clear();
+  const std::size_t n = pixels(in, walked_, lyon_in_);
+  (void)lyon_.eval_batch(lyon_in_, shaded_);
   const std::int64_t tri = in[kProgramFields + 7];
-  for (std::size_t p = 0; p < n; ++p) {
-    out.insert(out.end(),
-               {walked[5 * p], walked[5 * p + 1], tri, shaded[2 * p], shaded[2 * p + 1]});
+  const std::size_t at = out.size();
+  out.resize(at + 5 * n);
+  std::int64_t* o = out.data() + at;
+  for (std::size_t p = 0; p < n; ++p, o += 5) {
+    o[0] = walked_[5 * p];
+    o[1] = walked_[5 * p + 1];
+    o[2] = tri;
+    o[3] = shaded_[2 * p];
+    o[4] = shaded_[2 * p + 1];
   }
   return n;
 }

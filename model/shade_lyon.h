@@ -72,6 +72,8 @@ class ShadeLyonModel final : public PipelineModel {
   ShadeLyonFormats f_;
   QuadModel walker_;
   LyonModel lyon_;
+  // Scratch of eval: one program's walker pixels, Lyon inputs and Lyon outputs.
+  std::vector<std::int64_t> walked_, lyon_in_, shaded_;
 };
 
 }  // namespace phongsim

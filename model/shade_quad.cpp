@@ -11,12 +11,20 @@ ShadeQuadModel::ShadeQuadModel(const QuadFormats& formats) : walker_(formats) {
 }
 
 std::size_t ShadeQuadModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  std::vector<std::int64_t> walked;
-  const std::size_t n = walker_.eval(in.first(kProgramFields), walked);
+  walked_.clear();
+  const std::size_t n = walker_.eval(in.first(kProgramFields), walked_);
   const std::int64_t tri = in[kProgramFields];
-  for (std::size_t p = 0; p < n; ++p) {
-    const std::int64_t* px = walked.data() + 5 * p;
-    out.insert(out.end(), {px[0], px[1], tri, px[2], px[3], px[4]});
+  const std::size_t at = out.size();
+  out.resize(at + 6 * n);
+  std::int64_t* o = out.data() + at;
+  for (std::size_t p = 0; p < n; ++p, o += 6) {
+    const std::int64_t* px = walked_.data() + 5 * p;
+    o[0] = px[0];
+    o[1] = px[1];
+    o[2] = tri;
+    o[3] = px[2];
+    o[4] = px[3];
+    o[5] = px[4];
   }
   return n;
 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "model/pipeline.h"
 #include "model/quad.h"
@@ -27,6 +28,7 @@ class ShadeQuadModel final : public PipelineModel {
 
  private:
   QuadModel walker_;
+  std::vector<std::int64_t> walked_;  // scratch: the walker's pixels of one program
 };
 
 }  // namespace phongsim

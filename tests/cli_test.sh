@@ -86,7 +86,7 @@ EOT
     # Every pipeline's bench: the native kernel is checked bit-identical to the model on the bench
     # vectors (an error otherwise), and the JSON has every part and ratio (Icarus's too). No
     # timing is asserted.
-    for p in lirp lyon kb quad; do
+    for p in lirp lyon kb quad shade_lyon shade_quad shade_kb; do
       "$phongsim" bench "$p" --vectors 5000 --jobs 2 --json "$tmp/$p.json" >"$tmp/out" 2>&1 ||
         fail "bench $p: $(cat "$tmp/out")"
       grep -q "native kernel bit-identical to the model on all 5000 vectors" "$tmp/out" ||

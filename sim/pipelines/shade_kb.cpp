@@ -533,6 +533,51 @@ std::pair<double, double> pixels_per_clock(const Config& cfg, int length, int sp
           px / static_cast<double>(run(kb_pipeline(), kb, kb_in))};
 }
 
+// configs/shade_kb/default.toml by hand: the demux (a header to the three channels and its x0, y
+// to the span queue; an event word to the first channel with events still due), kb/default's
+// native engine on each channel's words, and the join (a pixel when all three have one; x = x0 +
+// i, wrapping at 2048; the span done at red's last pixel).
+std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  std::array<std::vector<std::int64_t>, 3> words, pixels;
+  std::vector<std::int64_t> spans;  // x0, y of each header
+  std::array<std::int64_t, 3> left{};
+  for (std::size_t at = 0; at + M::kInputs <= in.size(); at += M::kInputs) {
+    const std::int64_t* w = in.data() + at;
+    const int target = left[0] != 0 ? 0 : left[1] != 0 ? 1 : left[2] != 0 ? 2 : -1;
+    if (target < 0) {
+      spans.insert(spans.end(), {w[M::kX], w[M::kY]});
+      for (std::size_t c = 0; c < 3; ++c) left[c] = w[M::kCount + c];
+    } else {
+      --left[static_cast<std::size_t>(target)];
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (target >= 0 && c != static_cast<std::size_t>(target)) continue;
+      words[c].insert(words[c].end(), {w[M::kN], w[M::kCount + c], w[M::kF + c], w[M::kD1 + c],
+                                       w[M::kD2 + c], w[M::kReload]});
+    }
+  }
+  for (std::size_t c = 0; c < 3; ++c) (void)kb_pipeline().native(words[c], pixels[c]);
+  const std::size_t n =
+      std::min({pixels[0].size(), pixels[1].size(), pixels[2].size()}) / 2;  // (value, last)
+  const std::size_t base = out.size();
+  out.resize(base + 5 * n);
+  std::size_t span = 0;
+  std::int64_t i = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    std::int64_t* o = out.data() + base + 5 * p;
+    o[0] = (spans[2 * span] + i) & (kScreen - 1);
+    o[1] = spans[2 * span + 1];
+    for (std::size_t c = 0; c < 3; ++c) o[2 + c] = pixels[c][2 * p];
+    if (pixels[0][2 * p + 1] != 0) {
+      ++span;
+      i = 0;
+    } else {
+      i = (i + 1) & (kScreen - 1);
+    }
+  }
+  return n;
+}
+
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
              AnalysisReport& out) {
   out.print(
@@ -605,7 +650,7 @@ const PipelineInfo& shade_kb_pipeline() {
       .cycles = cycles,
       .stages = stages,
       .coverpoints = coverpoints,
-      .native = nullptr,
+      .native = native,
       .contract = contract,
       .float_error = float_error,
       .analyze = analyze,

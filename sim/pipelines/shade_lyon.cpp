@@ -12,6 +12,7 @@
 #include "ref/lyon_float.h"
 #include "ref/quad_float.h"
 #include "sim/pipelines/lyon.h"
+#include "sim/pipelines/native_walker.h"
 #include "sim/pipelines/quad.h"
 
 namespace phongsim {
@@ -310,6 +311,45 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
   return e;
 }
 
+// configs/shade_lyon/default.toml by hand: the walker of its normal components (acc S2.35, out
+// U1.11), each pixel's N' = 2c - 1 (c's raw value less 2^10, read as S1.10) into lyon/default's
+// native kernel (the same Lyon formats) with the program's V, L and shininess, a program at a
+// time.
+std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  constexpr std::size_t kProgram = ShadeLyonModel::kProgramFields, kStride = kProgram + 8;
+  constexpr std::int64_t kOne = std::int64_t{1} << 10;
+  std::vector<std::int64_t> walked, lyon_in, shaded;
+  std::size_t pixels = 0;
+  for (std::size_t at = 0; at + kStride <= in.size(); at += kStride) {
+    const std::int64_t* w = in.data() + at;
+    walked.clear();
+    lyon_in.clear();
+    shaded.clear();
+    const std::size_t n =
+        native_walker<38, 35, 12, 11, kProgram, false>(in.subspan(at, kProgram), walked);
+    lyon_in.resize(14 * n);
+    for (std::size_t p = 0; p < n; ++p) {
+      std::int64_t* v = lyon_in.data() + 14 * p;
+      for (int c = 0; c < 3; ++c) v[c] = v[3 + c] = walked[5 * p + 2 + c] - kOne;
+      v[6] = 0;                             // a
+      std::copy_n(w + kProgram, 7, v + 7);  // v, l, shin
+    }
+    (void)lyon_pipeline().native(lyon_in, shaded);
+    const std::size_t base = out.size();
+    out.resize(base + 5 * n);
+    for (std::size_t p = 0; p < n; ++p) {
+      std::int64_t* o = out.data() + base + 5 * p;
+      o[0] = walked[5 * p];
+      o[1] = walked[5 * p + 1];
+      o[2] = w[kStride - 1];
+      o[3] = shaded[2 * p];
+      o[4] = shaded[2 * p + 1];
+    }
+    pixels += n;
+  }
+  return pixels;
+}
+
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
              AnalysisReport& out) {
   const std::uint64_t triangles = std::max<std::uint64_t>(1, samples / 64);
@@ -357,7 +397,7 @@ const PipelineInfo& shade_lyon_pipeline() {
       .cycles = cycles,
       .stages = stages,
       .coverpoints = coverpoints,
-      .native = nullptr,
+      .native = native,
       .contract = contract,
       .float_error = float_error,
       .analyze = analyze,

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "model/shade_quad.h"
+#include "sim/pipelines/native_walker.h"
 #include "sim/pipelines/quad.h"
 
 namespace phongsim {
@@ -89,6 +90,12 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
   return quad_pipeline().float_error(cfg, samples, seed);
 }
 
+// configs/shade_quad/default.toml by hand: quad/default's walker (acc S2.32, out 0.8), the
+// triangle's number after the program and on each pixel.
+std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  return native_walker<35, 32, 8, 8, ShadeQuadModel::kProgramFields + 1, true>(in, out);
+}
+
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
              AnalysisReport& out) {
   out.print(
@@ -116,7 +123,7 @@ const PipelineInfo& shade_quad_pipeline() {
       .cycles = cycles,
       .stages = stages,
       .coverpoints = coverpoints,
-      .native = nullptr,
+      .native = native,
       .contract = contract,
       .float_error = float_error,
       .analyze = analyze,

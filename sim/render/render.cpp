@@ -65,14 +65,14 @@ const std::vector<Method>& methods() {
        Kind::flat},
       {{"gouraud",
         "lighting at the vertices, colour interpolated linearly (unit: shade_quad/linear)",
-        "shade_quad/linear", true},
+        "shade_quad/linear", true, "quad"},
        Kind::gouraud},
       {{"gouraud4", "Gouraud on the 4x-subdivided mesh (vertices and edge midpoints)", "", true},
        Kind::gouraud4},
       {{"quadratic",
         "Vlasic 4.3: lighting at vertices and edge midpoints, eq. 4.1 per pixel "
         "(unit: shade_quad/default)",
-        "shade_quad/default", true},
+        "shade_quad/default", true, "quad"},
        Kind::quadratic},
       {{"phong", "Phong (R.L)^n, normal normalized per pixel (Figure 9 row 1)", "", false},
        Kind::pixel,
@@ -143,7 +143,7 @@ const std::vector<Method>& methods() {
       {{"kb-onevec",
         "Kuijk-Blake eq. 4: one linear angle per span, quadratic cos^n (unit: shade_kb, an "
         "engine per channel)",
-        "shade_kb/default", true},
+        "shade_kb/default", true, "kb"},
        Kind::kb_one_vector},
       {{"env-map",
         "Vlasic 5.1: spherical environment map of the lights (eqs. 5.1-5.3), coordinates "
@@ -388,8 +388,7 @@ Backend resolve(const Method& m, Backend asked) {
 // method_runs_on (render.h).
 bool runs_on(const Method& m, std::string_view pipeline) {
   const std::string own = fs::path(std::string(m.info.config)).parent_path().string();
-  return !own.empty() && (pipeline == own || (own == "shade_quad" && pipeline == "quad") ||
-                          (own == "shade_kb" && pipeline == "kb"));
+  return !own.empty() && (pipeline == own || (!m.info.alone.empty() && pipeline == m.info.alone));
 }
 
 std::vector<bool> mask_of(const Frame& f) {

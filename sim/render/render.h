@@ -37,12 +37,14 @@ struct MethodInfo {
   std::string_view description;
   std::string_view config;  // configs/<config>.toml of its hardware unit; empty: float only
   bool mesh_only = false;   // needs triangles (not the analytic shinyballs scene)
+  // The pipeline of the unit `config`'s composed pipeline is built from, which --unit-config can
+  // run alone (quad: shade_quad's walker; kb: one engine for shade_kb's three); empty: none.
+  std::string_view alone;
 };
 [[nodiscard]] const std::vector<MethodInfo>& render_methods();
 [[nodiscard]] const MethodInfo& find_method(std::string_view name);  // Error lists the names
 // Whether method `name` can run on a unit of `pipeline` (render's --unit-config): its built-in
-// configuration's pipeline, or the unit a composed one is built from (quad for shade_quad's
-// walker methods, kb for shade_kb's kb-onevec), which then runs alone.
+// configuration's pipeline, or its MethodInfo::alone.
 [[nodiscard]] bool method_runs_on(std::string_view name, std::string_view pipeline);
 
 struct RenderOptions {
