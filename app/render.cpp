@@ -3,12 +3,18 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <charconv>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "app/commands.h"
 #include "app/json.h"
+#include "base/error.h"
 #include "base/output_file.h"
+#include "model/config.h"
+#include "sim/explore/synth.h"
+#include "sim/pipelines/registry.h"
 #include "sim/render/render.h"
 
 namespace phongsim::cli {
@@ -23,8 +29,64 @@ struct RenderCli {
   std::string texture_filter = "bilinear";
   std::string out_dir = "render";
   std::string json;
+  std::string clock;  // --clock-mhz: MHz, or "ice40"
   bool quiet = false;
 };
+
+// A unit's clock for frames per second (--clock-mhz): the given frequency, or its iCE40 fmax.
+struct Clock {
+  std::optional<double> mhz;
+  std::string note;  // where it comes from, or why there is none
+};
+
+constexpr double kMaxClockMhz = 100000;
+
+// --clock-mhz: empty (no clock), ice40, or a frequency in (0, kMaxClockMhz] MHz. Checked before
+// anything is rendered.
+std::optional<double> parse_clock(const std::string& text) {
+  if (text.empty() || text == "ice40") return std::nullopt;
+  double mhz = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), mhz);
+  if (ec != std::errc{} || end != text.data() + text.size() || !(mhz > 0) || mhz > kMaxClockMhz) {
+    throw Error(fmt::format("--clock-mhz {}: expected a frequency in MHz (0 < f <= {:g}) or ice40",
+                            text, kMaxClockMhz));
+  }
+  return mhz;
+}
+
+// Each unit configuration's clock: --clock-mhz's frequency, or with ice40 what nextpnr reaches
+// placing and routing it on the UP5K (`phongsim synth --ice40`, cached by content), where it fits
+// and the flow runs.
+std::map<std::string, Clock> unit_clocks(const RenderResult& r, const std::string& clock) {
+  std::map<std::string, Clock> clocks;
+  if (clock.empty()) return clocks;
+  const std::optional<double> given = parse_clock(clock);
+  for (const MethodResult& m : r.results) {
+    if (!m.frame || clocks.contains(m.frame->config)) continue;
+    Clock& c = clocks[m.frame->config];
+    if (given) {
+      c = {given, "--clock-mhz"};
+      continue;
+    }
+    const Config cfg = Config::load(m.frame->config);
+    try {
+      const SynthResult s = synthesize(rtl_design(find_pipeline(cfg.pipeline()), cfg), cfg.origin(),
+                                       SynthOptions{.generic = false, .ice40 = true}, stderr);
+      if (s.fits) {
+        c = {s.fmax_mhz,
+             fmt::format("nextpnr-ice40 --{}, seed {}", kSynthIce40Device, kSynthIce40Seed)};
+      } else {
+        c.note = fmt::format("does not fit the iCE40 {} ({} LUT4, {} FF, {} MAC16)",
+                             kSynthIce40Device, s.lut4, s.ff, s.mac16);
+      }
+    } catch (const Error& e) {
+      std::string why = e.what();  // without the configuration the table names already
+      if (why.starts_with(cfg.origin() + ": ")) why.erase(0, cfg.origin().size() + 2);
+      c.note = "the iCE40 flow failed: " + why;
+    }
+  }
+  return clocks;
+}
 
 nlohmann::ordered_json metrics_json(const ImageMetrics& m) {
   return {{"colour_correctness", m.colour_correctness},
@@ -37,22 +99,40 @@ double frame_rate(const FrameReport& f) {
   return f.cycles.cycles == 0 ? 0.0 : static_cast<double>(f.pixels) / f.cycles.cycles;
 }
 
+double frames_per_second(const FrameReport& f, double mhz) {
+  return f.cycles.cycles == 0 ? 0.0 : mhz * 1e6 / static_cast<double>(f.cycles.cycles);
+}
+
 // The frame's clocks per method on a hardware unit (docs/system.md); empty when none ran on one.
-std::string frame_table(const RenderResult& r) {
-  std::string t;
+// With clocks (--clock-mhz), frames per second at each unit's clock, and why a unit has none.
+std::string frame_table(const RenderResult& r, const std::map<std::string, Clock>& clocks) {
+  std::string t, notes;
+  const bool fps = !clocks.empty();
   for (const MethodResult& m : r.results) {
     if (!m.frame) continue;
     if (t.empty()) {
-      t = "\nClocks of the frame on each method's unit (RTL: measured; model: the cycle model)\n"
+      t = fmt::format(
+          "\nClocks of the frame on each method's unit (RTL: measured; model: the cycle model)\n"
           "| method | backend | cycles | pixels | pixels/clock | outputs | fill | setup | "
-          "empty rows | stalls |\n|---|---|---|---|---|---|---|---|---|---|\n";
+          "empty rows | stalls |{}\n|---|---|---|---|---|---|---|---|---|---|{}\n",
+          fps ? " clock (MHz) | frames/s |" : "", fps ? "---|---|" : "");
     }
     const FrameCycles& c = m.frame->cycles;
-    t += fmt::format("| {} | {} | {} | {} | {:.3f} | {} | {} | {} | {} | {} |\n", m.method,
+    t += fmt::format("| {} | {} | {} | {} | {:.3f} | {} | {} | {} | {} | {} |", m.method,
                      backend_name(m.backend), c.cycles, m.frame->pixels, frame_rate(*m.frame),
                      c.outputs, c.fill_cycles, c.setup_cycles, c.empty_row_cycles, c.stall_cycles);
+    if (fps) {
+      const Clock& k = clocks.at(m.frame->config);
+      if (k.mhz) {
+        t += fmt::format(" {:.2f} | {:.1f} |", *k.mhz, frames_per_second(*m.frame, *k.mhz));
+      } else {
+        t += " — | — |";
+        notes += fmt::format("{}: {}: {}\n", m.method, m.frame->config, k.note);
+      }
+    }
+    t += "\n";
   }
-  return t;
+  return t + notes;
 }
 
 int run(RenderCli c) {
@@ -68,6 +148,7 @@ int run(RenderCli c) {
   }
   check_distinct(
       {{"--json", c.json}, {"--unit-config", c.options.unit_config}, {"--scene", c.options.scene}});
+  (void)parse_clock(c.clock);
   // The files appear together when the render is done, or not at all; a --json inside the
   // output directory is one of them. Both are checked before anything is rendered.
   OutputSet set(c.out_dir, "", {});
@@ -77,6 +158,7 @@ int run(RenderCli c) {
   if (!json_in_set) json.emplace(c.json);
   std::FILE* const text = json && json->to_stdout() ? stderr : stdout;
   const RenderResult r = render(c.options, progress_line(c.quiet));
+  const std::map<std::string, Clock> clocks = unit_clocks(r, c.clock);
   set.rename(render_set_name(r), {render_set_name(r)});
   const auto files = write_render_outputs(r, set);
   nlohmann::ordered_json j = json_document("render");
@@ -107,7 +189,17 @@ int run(RenderCli c) {
                          {"fill_cycles", c.fill_cycles},
                          {"setup_cycles", c.setup_cycles},
                          {"empty_row_cycles", c.empty_row_cycles},
-                         {"stall_cycles", c.stall_cycles}};
+                         {"stall_cycles", c.stall_cycles},
+                         {"clock_mhz", nullptr},
+                         {"frames_per_second", nullptr},
+                         {"clock", nullptr}};
+      if (const auto k = clocks.find(m.frame->config); k != clocks.end()) {
+        if (k->second.mhz) {
+          method["frame"]["clock_mhz"] = *k->second.mhz;
+          method["frame"]["frames_per_second"] = frames_per_second(*m.frame, *k->second.mhz);
+        }
+        method["frame"]["clock"] = k->second.note;
+      }
     } else {
       method["frame"] = nullptr;
     }
@@ -127,7 +219,7 @@ int run(RenderCli c) {
   fmt::print(text, "{}: {} x {} pixels ({} object pixels), reference {} (float){}\n{}", r.scene,
              r.reference.image.width(), r.reference.image.height(), r.reference.metrics.pixels,
              r.reference.method, r.settings, metrics_markdown(r));
-  fmt::print(text, "{}", frame_table(r));
+  fmt::print(text, "{}", frame_table(r, clocks));
   fmt::print(text, "wrote {} files to {} (grid: {})\n", files.size(), c.out_dir,
              (fs::path(c.out_dir) / (r.scene + "_grid.png")).string());
   return 0;
@@ -182,6 +274,10 @@ void add_render(CLI::App& app, Action& action) {
   cmd->add_option("--json", c->json,
                   "write the results as JSON (docs/json.md: files, metrics, per-sphere metrics); "
                   "- is standard output");
+  cmd->add_option("--clock-mhz", c->clock,
+                  "frames per second at this clock: a frequency in MHz for every unit, or ice40: "
+                  "each unit's fmax placed and routed on the iCE40 UP5K (phongsim synth --ice40, "
+                  "cached), where it fits");
   cmd->add_flag("--no-build", c->options.no_build,
                 "fail instead of Verilating a configuration that is not built yet");
   cmd->add_flag("--quiet", c->quiet, "no progress display");

@@ -61,6 +61,29 @@ one, three = frame("kb-rtl", "kb-onevec"), frame("rtl", "kb-onevec")
 assert one["outputs"] == 3 * one["pixels"] and one["cycles"] > 2.9 * three["cycles"], (one, three)
 print(f"ok: walker alone {frame('quad-rtl', 'gouraud')['cycles']} cycles, one engine {one['cycles']}")
 PY
+# Frames per second (--clock-mhz): a given clock for every unit, or one engine's iCE40 fmax from
+# the synthesis flow (phongsim synth --ice40), each frame's cycles at that clock.
+"$phongsim" render --scene teapot --method gouraud,kb-onevec --backend model --clock-mhz 50 \
+  --out "$tmp/clock" --json "$tmp/clock.json" >"$tmp/clock.txt"
+grep -q "| clock (MHz) | frames/s |$" "$tmp/clock.txt" || { echo "FAIL: no fps columns"; exit 1; }
+"$phongsim" render --scene teapot --method kb-onevec --backend model --clock-mhz ice40 \
+  --unit-config "$src/configs/kb/default.toml" --out "$tmp/ice40" --json "$tmp/ice40.json" \
+  >/dev/null 2>&1
+"$phongsim" synth --config "$src/configs/kb/default.toml" --ice40 --json "$tmp/synth.json" >/dev/null 2>&1
+python3 - "$tmp" <<'PY'
+import json, sys
+t = sys.argv[1]
+frames = lambda name: [m["frame"] for m in json.load(open(f"{t}/{name}.json"))["methods"]]
+for f in frames("clock"):
+    assert f["clock_mhz"] == 50 and f["clock"] == "--clock-mhz", f
+    assert abs(f["frames_per_second"] - 50e6 / f["cycles"]) < 1e-9 * f["frames_per_second"], f
+(f,) = frames("ice40")
+fmax = json.load(open(f"{t}/synth.json"))["ice40"]["fmax_mhz"]
+assert fmax > 0 and f["clock_mhz"] == fmax and f["clock"].startswith("nextpnr-ice40"), (f, fmax)
+assert abs(f["frames_per_second"] - fmax * 1e6 / f["cycles"]) < 1e-6, f
+assert all(g["clock_mhz"] is None and g["frames_per_second"] is None for g in frames("model")), t
+print(f"ok: one engine at {fmax} MHz: {f['frames_per_second']:.1f} teapot frames per second")
+PY
 cmp "$tmp/rtl/teapot_gouraud.png" "$tmp/quad-rtl/teapot_gouraud.png" ||
   { echo "FAIL: gouraud on the walker alone differs from shade_quad's"; exit 1; }
 cmp "$tmp/rtl/teapot_kb-onevec.png" "$tmp/kb-rtl/teapot_kb-onevec.png" ||

@@ -593,6 +593,7 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
       UnitImage u = unit_image(m, b, what);
       r.image = std::move(u.image);
       r.frame = u.frame;
+      r.frame->config = unit_path(m);
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.cpu_seconds = static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC;

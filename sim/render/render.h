@@ -79,6 +79,7 @@ struct FrameReport {
                              // pixel's one light (Lyon) or one colour channel (Kuijk-Blake))
   // Methods with one program per triangle (the quadratic walker): each triangle's own cycles.
   std::vector<std::pair<int, FrameCycles>> triangles;
+  std::string config;  // the unit's configuration file
 };
 
 struct MethodResult {
