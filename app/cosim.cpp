@@ -258,9 +258,8 @@ int run(CosimCli& c) {
   if (!c.coverage.empty()) {
     coverage = merge_coverage(c.coverage, line_waivers);
     const std::filesystem::path dir = c.coverage;
-    // No toggle point in DIR's data (every run there had --no-toggle-coverage): not measured.
     const std::string toggles =
-        coverage->toggle_points == 0
+        !coverage->toggles_measured()
             ? "toggles not measured (--no-toggle-coverage)"
             : fmt::format("toggles {:.1f} % ({} of {})", coverage->toggle_percent(),
                           coverage->toggle_hit, coverage->toggle_points);
@@ -296,18 +295,18 @@ int run(CosimCli& c) {
       const std::filesystem::path dir = c.coverage;
       j["coverage"] = {
           {"line_percent", coverage->line_percent()},
-          {"toggle_percent", coverage->toggle_points == 0
-                                 ? nlohmann::ordered_json(nullptr)
-                                 : nlohmann::ordered_json(coverage->toggle_percent())},
+          {"toggle_percent", coverage->toggles_measured()
+                                 ? nlohmann::ordered_json(coverage->toggle_percent())
+                                 : nlohmann::ordered_json(nullptr)},
           {"lines",
            {{"hit", coverage->line_hit},
             {"total", coverage->line_points},
             {"waived", coverage->line_waived},
             {"waivers", waived_json(coverage->waived)}}},
-          {"toggles", coverage->toggle_points == 0
-                          ? nlohmann::ordered_json(nullptr)
-                          : nlohmann::ordered_json({{"hit", coverage->toggle_hit},
-                                                    {"total", coverage->toggle_points}})},
+          {"toggles", coverage->toggles_measured()
+                          ? nlohmann::ordered_json(
+                                {{"hit", coverage->toggle_hit}, {"total", coverage->toggle_points}})
+                          : nlohmann::ordered_json(nullptr)},
           {"coverpoints",
            {{"hit", points.hit_points()},
             {"total", points.size()},

@@ -464,18 +464,25 @@ TEST(RenderMethods, AllMethods) {
 // --unit-config: a method runs on its built-in configuration's pipeline, and a composed
 // pipeline's methods also on the unit it is built from, alone; nothing else.
 TEST(RenderMethods, UnitPipelines) {
-  EXPECT_TRUE(method_runs_on("quadratic", "shade_quad"));
-  EXPECT_TRUE(method_runs_on("gouraud", "quad"));
-  EXPECT_TRUE(method_runs_on("kb-onevec", "shade_kb"));
-  EXPECT_TRUE(method_runs_on("kb-onevec", "kb"));
-  EXPECT_TRUE(method_runs_on("lyon-k2", "lyon"));
-  EXPECT_TRUE(method_runs_on("lyon-k2-tri", "shade_lyon"));
-  EXPECT_FALSE(method_runs_on("quadratic", "kb"));
-  EXPECT_FALSE(method_runs_on("kb-onevec", "quad"));
-  EXPECT_FALSE(method_runs_on("lyon-k2-tri", "lyon"));
-  EXPECT_FALSE(method_runs_on("lyon-k2", "shade_lyon"));
-  EXPECT_FALSE(method_runs_on("phong", "lyon"));
-  EXPECT_FALSE(method_runs_on("phong", ""));
+  struct Case {
+    const char* method;
+    const char* pipeline;
+    bool runs;
+  };
+  for (const Case& c : std::vector<Case>{{"quadratic", "shade_quad", true},
+                                         {"gouraud", "quad", true},
+                                         {"kb-onevec", "shade_kb", true},
+                                         {"kb-onevec", "kb", true},
+                                         {"lyon-k2", "lyon", true},
+                                         {"lyon-k2-tri", "shade_lyon", true},
+                                         {"quadratic", "kb", false},
+                                         {"kb-onevec", "quad", false},
+                                         {"lyon-k2-tri", "lyon", false},
+                                         {"lyon-k2", "shade_lyon", false},
+                                         {"phong", "lyon", false},
+                                         {"phong", "", false}}) {
+    EXPECT_EQ(method_runs_on(c.method, c.pipeline), c.runs) << c.method << " on " << c.pipeline;
+  }
 }
 
 TEST(RenderErrors, OneLineEach) {

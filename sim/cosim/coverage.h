@@ -49,6 +49,9 @@ struct CoverageSummary {
   std::uint64_t toggle_hit = 0;
   [[nodiscard]] double line_percent() const;    // 100 * hit / points; 0 without points
   [[nodiscard]] double toggle_percent() const;  // likewise
+  // False when the data has no toggle point: every run had a line-only build
+  // (--no-toggle-coverage), so toggles were not measured (not 0 %).
+  [[nodiscard]] bool toggles_measured() const { return toggle_points > 0; }
 };
 
 // The prefix a run's DUTs write their files under (RtlLibrary::create): DIR/data/<time>-<pid>-,
