@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -61,6 +62,14 @@ std::map<std::string, Clock> unit_clocks(const RenderResult& r, const std::strin
   std::map<std::string, Clock> clocks;
   if (clock.empty()) return clocks;
   const std::optional<double> given = parse_clock(clock);
+  // A clock no frame would use is a mistake, not something to ignore (as --unit-config's).
+  if (std::none_of(r.results.begin(), r.results.end(),
+                   [](const MethodResult& m) { return m.frame.has_value(); })) {
+    throw Error(fmt::format(
+        "--clock-mhz {}: no method chosen here runs on a hardware unit (through --backend model, "
+        "rtl or auto)",
+        clock));
+  }
   for (const MethodResult& m : r.results) {
     if (!m.frame || clocks.contains(m.frame->config)) continue;
     Clock& c = clocks[m.frame->config];
