@@ -267,7 +267,8 @@ void add_render(CLI::App& app, Action& action) {
           "row of the scanline illumination plot (default: the middle)", 0, 2047);
   cmd->add_option("--unit-config", c->options.unit_config,
                   "a configuration file replacing the built-in one of every unit method "
-                  "of its pipeline");
+                  "that runs on its pipeline (a quad or kb configuration: the walker or one "
+                  "Kuijk-Blake engine alone)");
   cmd->add_option("--terms", c->terms,
                   "lighting terms: all, or specular only (Vlasic's Table 6.1 compares those)")
       ->capture_default_str();
