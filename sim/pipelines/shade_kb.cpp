@@ -550,10 +550,11 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
     } else {
       --left[static_cast<std::size_t>(target)];
     }
-    for (std::size_t c = 0; c < 3; ++c) {
-      if (target >= 0 && c != static_cast<std::size_t>(target)) continue;
-      words[c].insert(words[c].end(), {w[M::kN], w[M::kCount + c], w[M::kF + c], w[M::kD1 + c],
-                                       w[M::kD2 + c], w[M::kReload]});
+    for (int c = 0; c < 3; ++c) {
+      if (target >= 0 && c != target) continue;
+      const auto word = M::channel_word(in.subspan(at, M::kInputs), c);
+      auto& to = words[static_cast<std::size_t>(c)];
+      to.insert(to.end(), word.begin(), word.end());
     }
   }
   for (std::size_t c = 0; c < 3; ++c) (void)kb_pipeline().native(words[c], pixels[c]);

@@ -14,6 +14,7 @@
 #include "model/quad.h"
 #include "model/quad_setup.h"
 #include "model/shade_lyon.h"
+#include "model/shade_quad.h"
 #include "sim/cosim/harness.h"
 #include "sim/pipelines/registry.h"
 #include "sim/pipelines/shade_kb.h"
@@ -124,7 +125,9 @@ namespace {
 // A walker unit's programs, one per triangle (and pass), with the pixels the frame's coverage
 // says each emits: the unit must emit exactly those (its pixels come back program by program).
 struct TrianglePrograms {
-  static constexpr int kTriMask = 0xffff;  // the triangle pipelines' 16-bit `tri`
+  // The triangle pipelines' `tri` field.
+  static constexpr int kTriMask = (1 << ShadeLyonModel::kTriBits) - 1;
+  static_assert(ShadeLyonModel::kTriBits == ShadeQuadModel::kTriBits);
   std::vector<std::int64_t> words;
   std::vector<int> tris;
   std::vector<std::size_t> counts;
