@@ -9,6 +9,7 @@
 #include "app/json.h"
 #include "base/error.h"
 #include "base/paths.h"
+#include "model/plan.h"
 #include "sim/cosim/bench.h"
 #include "sim/cosim/icarus_dut.h"
 #include "sim/render/render.h"
@@ -201,8 +202,9 @@ int run(BenchCli c) {
   BenchReport r = bench(subject_of(l, t, stimulus), vectors, native, c.jobs, icarus,
                         quick_cap(kIcarusCycles, 1000));
   if (!why_not.empty()) r.native_note = why_not;
-  fmt::print(json.text(), "bench {}/{}: {} random vectors each\n{}", l.pipeline->name, l.cfg.name(),
-             vectors, r.table());
+  const char* isa = fx::isa_name(fx::kernel_isa());
+  fmt::print(json.text(), "bench {}/{}: {} random vectors each, kernels on {}\n{}",
+             l.pipeline->name, l.cfg.name(), vectors, isa, r.table());
   const auto ratio = [](double a, double b) { return json_number(a / b); };
   nlohmann::ordered_json j = json_document("bench");
   j["kind"] = "pipeline";
@@ -210,6 +212,7 @@ int run(BenchCli c) {
   j["config"] = l.cfg.name();
   j["config_path"] = l.cfg.origin();
   j["vectors"] = vectors;
+  j["isa"] = isa;
   j["stimulus"] = {{"vectors_per_s", json_number(r.stimulus.vectors_per_s)}};
   j["model"] = rate_json(r.model);
   j["native"] = r.native ? rate_json(*r.native) : nlohmann::ordered_json(nullptr);

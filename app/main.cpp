@@ -13,6 +13,7 @@
 #include "base/error.h"
 #include "base/process.h"
 #include "base/temporaries.h"
+#include "model/plan.h"
 #include "sim/cosim/rtl_plugin.h"
 
 namespace phongsim {
@@ -118,6 +119,8 @@ int main(int argc, char** argv) {
     phongsim::sweep_stale_temporaries(
         {phongsim::rtl_cache_dir(), phongsim::rtl_cache_dir() / "synth"});
     if (argc == 2 && std::string_view(argv[1]) == "--version") return print_version();
+    // A bad $PHONGSIM_ISA is refused now, not in the first worker thread that runs a kernel.
+    (void)phongsim::fx::kernel_isa();
     // Words that are no options name a command (and its action, for sweep): say which one is
     // not known, rather than CLI11's "A subcommand is required".
     if (const std::string problem = command_problem(app, argc, argv); !problem.empty()) {

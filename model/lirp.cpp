@@ -22,14 +22,34 @@ LirpPlan::LirpPlan(const LirpFormats& f)
       sum_(fx::AddStep::add(f.p, fx::mul_format(f.a, delta_.r))),
       out_(sum_.r, f.out, f.out_round, f.out_overflow) {}
 
-void LirpPlan::run(const std::int64_t* const* in, std::int64_t* const* out, std::size_t n) const {
-  const std::int64_t* a = in[6];
-  for (int c = 0; c < 3; ++c) {
-    const std::int64_t* p0 = in[c];
-    const std::int64_t* p1 = in[3 + c];
-    std::int64_t* p = out[c];
-    for (std::size_t i = 0; i < n; ++i) p[i] = component(p0[i], p1[i], a[i]);
-  }
+void LirpPlan::run(const std::int64_t* in, std::int64_t* out, std::size_t n) const {
+  // The plan copied: as far as the compiler knows, the outputs may alias *this, and reloading
+  // its constants after each store would keep the loop from vectorizing.
+  const LirpPlan plan = *this;
+  const auto blocks = [&](auto component) {
+    fx::for_each_block<7, 3>(
+        in, out, n,
+        [&](const std::int64_t* const* soa_in, std::int64_t* const* soa_out, std::size_t m) {
+          const std::int64_t* a = soa_in[6];
+          for (int c = 0; c < 3; ++c) {
+            const std::int64_t* p0 = soa_in[c];
+            const std::int64_t* p1 = soa_in[3 + c];
+            std::int64_t* p = soa_out[c];
+            for (std::size_t i = 0; i < m; ++i) p[i] = component(p0[i], p1[i], a[i]);
+          }
+        });
+  };
+  fx::on_kernel_isa([&] {
+    if (plan.out_.saturates()) {  // the wrap's operations left out
+      blocks([&](std::int64_t p0, std::int64_t p1, std::int64_t a) {
+        return plan.out_.saturated(plan.sum(p0, p1, a));
+      });
+    } else {
+      blocks([&](std::int64_t p0, std::int64_t p1, std::int64_t a) {
+        return plan.component(p0, p1, a);
+      });
+    }
+  });
 }
 
 namespace {
@@ -84,9 +104,7 @@ std::size_t LirpModel::eval_batch(std::span<const std::int64_t> in, std::vector<
   if (counts != nullptr) counts->insert(counts->end(), n, 1);
   const std::size_t at = out.size();
   out.resize(at + 3 * n);
-  fx::for_each_block<7, 3>(in.data(), out.data() + at, n,
-                           [this](const std::int64_t* const* soa_in, std::int64_t* const* soa_out,
-                                  std::size_t m) { plan_.run(soa_in, soa_out, m); });
+  plan_.run(in.data(), out.data() + at, n);
   return n;
 }
 

@@ -42,14 +42,18 @@ class LirpPlan {
   [[nodiscard]] bool usable() const { return out_.fits_int64(); }
 
   [[nodiscard]] std::int64_t component(std::int64_t p0, std::int64_t p1, std::int64_t a) const {
-    return out_(sum_.sum(p0, a * delta_.diff(p1, p0)));
+    return out_(sum(p0, p1, a));
   }
 
-  // n transactions, structure of arrays: in[f][i] is input field f (inputs() order) of
-  // transaction i, out[f][i] output field f.
-  void run(const std::int64_t* const* in, std::int64_t* const* out, std::size_t n) const;
+  // n transactions stored back to back (7 inputs each, inputs() order), 3 outputs each written
+  // to `out`; a block at a time on structure-of-arrays temporaries.
+  void run(const std::int64_t* in, std::int64_t* out, std::size_t n) const;
 
  private:
+  [[nodiscard]] std::int64_t sum(std::int64_t p0, std::int64_t p1, std::int64_t a) const {
+    return sum_.sum(p0, a * delta_.diff(p1, p0));
+  }
+
   fx::AddStep delta_;  // p1 - p0
   fx::AddStep sum_;    // p0 + prod
   fx::Requant out_;    // sum -> out

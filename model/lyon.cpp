@@ -188,13 +188,9 @@ LyonStages LyonModel::stages(const std::array<std::int64_t, 3>& n0,
 
 std::size_t LyonModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
   if (plan_.usable()) {
-    const std::int64_t* fields[14];
-    for (int f = 0; f < 14; ++f) fields[f] = &in[static_cast<std::size_t>(f)];
-    std::int64_t spec = 0, diff = 0;
-    std::int64_t* results[] = {&spec, &diff};
-    plan_.run(fields, results, 1);
-    out.push_back(spec);
-    out.push_back(diff);
+    std::int64_t results[2];  // spec, diff
+    plan_.run(in.data(), results, 1);
+    out.insert(out.end(), results, results + 2);
     return 1;
   }
   const LyonStages s = stages({in[0], in[1], in[2]}, {in[3], in[4], in[5]}, in[6],
@@ -211,9 +207,7 @@ std::size_t LyonModel::eval_batch(std::span<const std::int64_t> in, std::vector<
   if (counts != nullptr) counts->insert(counts->end(), n, 1);
   const std::size_t at = out.size();
   out.resize(at + 2 * n);
-  fx::for_each_block<14, 2>(in.data(), out.data() + at, n,
-                            [this](const std::int64_t* const* soa_in, std::int64_t* const* soa_out,
-                                   std::size_t m) { plan_.run(soa_in, soa_out, m); });
+  plan_.run(in.data(), out.data() + at, n);
   return n;
 }
 

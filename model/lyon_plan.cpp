@@ -1,6 +1,7 @@
 #include "model/lyon_plan.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <type_traits>
 
 #include "model/lyon.h"
@@ -12,8 +13,8 @@ constexpr fx::Format kOneFmt{false, 1, 0};  // the constant 1 as the RTL writes 
 
 }  // namespace
 
-fx::Requant LyonPlan::rq(fx::Format from, fx::Format to) {
-  const fx::Requant r(from, to, round_, fx::Overflow::saturate);
+fx::Saturate LyonPlan::rq(fx::Format from, fx::Format to) {
+  const fx::Saturate r(from, to, round_);
   usable_ = usable_ && r.fits_int64();
   return r;
 }
@@ -93,14 +94,14 @@ LyonPlan::LyonPlan(const LyonFormats& f)
   spec_ = rq(f.sq, f.spec);
 }
 
-void LyonPlan::run(const std::int64_t* const* in, std::int64_t* const* out, std::size_t n) const {
-  const std::int64_t* in_at[14];
-  std::int64_t* out_at[2];
-  for (std::size_t base = 0; base < n; base += fx::kBlock) {
-    for (int f = 0; f < 14; ++f) in_at[f] = in[f] + base;
-    for (int f = 0; f < 2; ++f) out_at[f] = out[f] + base;
-    block(in_at, out_at, std::min(fx::kBlock, n - base));
-  }
+void LyonPlan::run(const std::int64_t* in, std::int64_t* out, std::size_t n) const {
+  fx::on_kernel_isa([&] {
+    fx::for_each_block<14, 2>(
+        in, out, n,
+        [this](const std::int64_t* const* soa_in, std::int64_t* const* soa_out, std::size_t m) {
+          block(soa_in, soa_out, m);
+        });
+  });
 }
 
 void LyonPlan::Norm::run(const Block* src, Block* dst, std::size_t m) const {
@@ -110,17 +111,20 @@ void LyonPlan::Norm::run(const Block* src, Block* dst, std::size_t m) const {
     }
     return;
   }
+  // The steps copied: as far as the compiler knows, dst may alias *this, and reloading every
+  // step's constants after each store would keep the loop from vectorizing.
+  const Norm s = *this;
   const auto each = [&](auto square) {
     for (std::size_t i = 0; i < m; ++i) {
       const std::int64_t x = src[0][i], y0 = src[1][i], z0 = src[2][i];
-      const std::int64_t zv = z(zz(x, y0, z0, x, y0, z0));
-      const std::int64_t yv = y(y_sub.diff(1, zv));
+      const std::int64_t zv = s.z(s.zz(x, y0, z0, x, y0, z0));
+      const std::int64_t yv = s.y(s.y_sub.diff(1, zv));
       std::int64_t p = yv;
-      if constexpr (decltype(square)::value) p = poly.sum(yv, yv * yv);
-      const std::int64_t gv = g(g_add.sum(1, half(p)));
-      dst[0][i] = out(gv * x);
-      dst[1][i] = out(gv * y0);
-      dst[2][i] = out(gv * z0);
+      if constexpr (decltype(square)::value) p = s.poly.sum(yv, yv * yv);
+      const std::int64_t gv = s.g(s.g_add.sum(1, s.half(p)));
+      dst[0][i] = s.out(gv * x);
+      dst[1][i] = s.out(gv * y0);
+      dst[2][i] = s.out(gv * z0);
     }
   };
   if (order == 2) {
@@ -182,15 +186,14 @@ void LyonPlan::block(const std::int64_t* const* in, std::int64_t* const* out, st
   } else {
     for (std::size_t i = 0; i < m; ++i) {
       std::int64_t w[3];
-      bool big = false;
+      bool big = false;  // | rather than ||: no branch in the loop
       for (int c = 0; c < 3; ++c) {
-        const std::int64_t dc = d[c][i];
-        const std::int64_t u = u_(shin[i] * dabs_(dc < 0 ? -dc : dc));
-        big = big || u_big_(u);
+        const std::int64_t u = u_(shin[i] * dabs_(std::abs(d[c][i])));
+        big = big | u_big_(u);
         w[c] = w_(u);
       }
       const std::int64_t xk = wk_(ww_(w[0], w[1], w[2], w[0], w[1], w[2]));
-      zero[i] = big || zero_(xk) ? 1 : 0;
+      zero[i] = big | zero_(xk) ? 1 : 0;
       xf[i] = xf_(xk);
     }
   }
@@ -199,7 +202,11 @@ void LyonPlan::block(const std::int64_t* const* in, std::int64_t* const* out, st
   for (int j = 1; j <= k_; ++j) {
     for (std::size_t i = 0; i < m; ++i) sq[i] = sqj_(sq[i] * sq[i]);
   }
-  for (std::size_t i = 0; i < m; ++i) out[0][i] = zero[i] != 0 ? 0 : spec_(sq[i]);
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::int64_t spec = spec_(sq[i]);
+    sq[i] = zero[i] != 0 ? 0 : spec;
+  }
+  std::copy_n(sq, m, out[0]);
 }
 
 }  // namespace phongsim

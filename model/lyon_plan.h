@@ -1,8 +1,8 @@
 // Lyon's specular unit (model/lyon.h) compiled for one configuration: every stage of
 // LyonModel::stages() as precomputed steps (model/plan.h), run a block of pixels at a time,
 // stage after stage, on structure-of-arrays temporaries, so the per-pixel work is integer
-// arithmetic the compiler can vectorize. Bit-identical to the stage path in every configuration
-// (tests/plan_test.cpp).
+// arithmetic the compiler vectorizes (fx::on_kernel_isa, model/plan.h). Bit-identical to the
+// stage path in every configuration and instruction set (tests/plan_test.cpp).
 #pragma once
 
 #include <cstddef>
@@ -39,33 +39,38 @@ class LyonPlan {
   // False when a requantization needs more than int64_t: the model keeps the stage path.
   [[nodiscard]] bool usable() const { return usable_; }
 
-  // n pixels, structure of arrays: in[f][i] is input field f (LyonModel's inputs() order:
-  // n0, n1, a, v, l, shin) of pixel i; out[0] spec, out[1] diff.
-  void run(const std::int64_t* const* in, std::int64_t* const* out, std::size_t n) const;
+  // n pixels stored back to back (14 inputs each, LyonModel's inputs() order: n0, n1, a, v, l,
+  // shin), 2 outputs each (spec, diff) written to `out`.
+  void run(const std::int64_t* in, std::int64_t* out, std::size_t n) const;
 
  private:
   using Block = std::int64_t[fx::kBlock];
+
+  // A block of m <= fx::kBlock pixels, structure of arrays: in[f][i] is input field f of
+  // pixel i; out[0] spec, out[1] diff. Always inlined (as Norm::run), so that run() compiles
+  // it for each instruction set (fx::on_kernel_isa).
+  [[gnu::always_inline]] inline void block(const std::int64_t* const* in, std::int64_t* const* out,
+                                           std::size_t m) const;
 
   // lyon_norm: order 0 requantizes only; otherwise z = N'·N', y = 1 - z, g = 1 + poly/2,
   // out = g·N'.
   struct Norm {
     int order = 0;
-    fx::Requant plain;  // order 0
+    fx::Saturate plain;  // order 0
     Dot3Step zz;
-    fx::Requant z;
+    fx::Saturate z;
     fx::AddStep y_sub;  // 1 - z
-    fx::Requant y;
+    fx::Saturate y;
     fx::AddStep poly;  // y + y·y (order 2)
     fx::ScaleStep half;
     fx::AddStep g_add;  // 1 + poly/2
-    fx::Requant g;
-    fx::Requant out;
+    fx::Saturate g;
+    fx::Saturate out;
 
-    void run(const Block* src, Block* dst, std::size_t m) const;
+    [[gnu::always_inline]] inline void run(const Block* src, Block* dst, std::size_t m) const;
   };
 
-  void block(const std::int64_t* const* in, std::int64_t* const* out, std::size_t m) const;
-  fx::Requant rq(fx::Format from, fx::Format to);
+  fx::Saturate rq(fx::Format from, fx::Format to);
   Norm norm(fx::Format in, fx::Format out, int order, const LyonFormats& f);
 
   bool usable_ = true;
@@ -75,33 +80,33 @@ class LyonPlan {
   int k_ = 0;
 
   fx::AddStep delta_, lirp_;  // stages 0-2
-  fx::Requant np_;
+  fx::Saturate np_;
   Norm n_norm_, h_norm_;  // stages 3-5
   Dot3Step nl_;           // stage 6: diffuse
-  fx::Requant diff_;
+  fx::Saturate diff_;
   fx::AddStep lv_;  // stage 2 (halfway): H = (L + V)/2
   fx::ScaleStep lv_half_;
-  fx::Requant h_;
+  fx::Saturate h_;
   Dot3Step dot_in_;  // stage 6: N·V or H·N
-  fx::Requant dot_;
+  fx::Saturate dot_;
   fx::ScaleStep r_two_;  // stage 7 (reflect): 2(N·V)N - V
   fx::AddStep r_sub_;
-  fx::Requant r_;
+  fx::Saturate r_;
   fx::AddStep d_sub_;  // stage 8
-  fx::Requant d_;
+  fx::Saturate d_;
   Dot3Step dd_in_;  // stages 9-10, arrangement 7
-  fx::Requant dd_;
+  fx::Saturate dd_;
   fx::ScaleStep x2_, xk_;
-  fx::Requant dabs_;  // stages 9-10, arrangement 8
+  fx::Saturate dabs_;  // stages 9-10, arrangement 8
   fx::ScaleStep u_;
   fx::AtLeastOne u_big_;
-  fx::Requant w_;
+  fx::Saturate w_;
   Dot3Step ww_;
   fx::ScaleStep wk_;
   fx::AtLeastOne zero_;  // x/2^k >= 1
-  fx::Requant xf_;
+  fx::Saturate xf_;
   fx::AddStep sq_sub_;  // stages 11..: 1 - xf, then squarings
-  fx::Requant sq0_, sqj_, spec_;
+  fx::Saturate sq0_, sqj_, spec_;
 };
 
 }  // namespace phongsim

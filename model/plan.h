@@ -10,10 +10,67 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "model/fixed.h"
 
 namespace phongsim::fx {
+
+// ---- Instruction sets. A batch kernel (a plan's loops over many vectors, or a native kernel)
+// is compiled once per instruction set and runs the one kernel_isa() names: int64 multiplies,
+// arithmetic shifts and min/max vectorize only with AVX-512 (x86-64-v4), so the baseline code
+// runs the block loops one value at a time. docs/performance.md has the measured effect.
+enum class Isa { baseline, avx2, avx512 };  // x86-64, x86-64-v3, x86-64-v4
+
+[[nodiscard]] const char* isa_name(Isa isa);
+// The instruction sets this CPU runs, baseline first (baseline only where the kernels are not
+// compiled for more: other than GCC on x86-64).
+[[nodiscard]] std::vector<Isa> supported_isas();
+// What the kernels run: $PHONGSIM_ISA if set (baseline, avx2 or avx512; an unknown or
+// unsupported name is an Error), else the widest supported.
+[[nodiscard]] Isa kernel_isa();
+// The kernels run `isa` from now on (tests run every supported one); unsupported: an Error.
+void set_kernel_isa(Isa isa);
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PHONGSIM_ISA_CLONES 1
+#endif
+
+namespace detail {
+// flatten: everything body() calls that the compiler can see is inlined, hence compiled for
+// the function's instruction set (a call it cannot inline runs baseline code).
+#ifdef PHONGSIM_ISA_CLONES
+template <class Body>
+[[gnu::target("arch=x86-64-v4"), gnu::flatten]] void on_avx512(Body& body) {
+  body();
+}
+template <class Body>
+[[gnu::target("arch=x86-64-v3"), gnu::flatten]] void on_avx2(Body& body) {
+  body();
+}
+#endif
+template <class Body>
+[[gnu::flatten]] void on_baseline(Body& body) {
+  body();
+}
+}  // namespace detail
+
+// Runs body() compiled for kernel_isa(). Call it from the file that defines the kernel's loops,
+// so that they can be inlined.
+template <class Body>
+void on_kernel_isa(Body&& body) {
+#ifdef PHONGSIM_ISA_CLONES
+  switch (kernel_isa()) {
+    case Isa::avx512:
+      return detail::on_avx512(body);
+    case Isa::avx2:
+      return detail::on_avx2(body);
+    case Isa::baseline:
+      break;
+  }
+#endif
+  detail::on_baseline(body);
+}
 
 // resize_raw(x, from, to, round, overflow) compiled: branch-free, the same result for every x
 // in `from`'s range (tests/plan_test.cpp checks every value of many formats and modes). Valid
@@ -32,11 +89,11 @@ class Requant {
       bias_ = round == Round::truncate ? 0 : round == Round::half_up ? half : half - 1;
       odd_ = round == Round::half_even ? 1 : 0;
     }
-    if (overflow == Overflow::saturate) {
+    saturates_ = overflow == Overflow::saturate;
+    if (saturates_) {
       lo_ = to.min_raw();
       hi_ = to.max_raw();
     } else {  // wrap: the low width bits, read in `to`'s signedness (fx::from_bits)
-      wrap_ = true;
       mask_ = static_cast<std::int64_t>((std::uint64_t{1} << to.width()) - 1);
       sign_ = to.is_signed ? std::int64_t{1} << (to.width() - 1) : 0;
     }
@@ -46,12 +103,21 @@ class Requant {
   }
 
   [[nodiscard]] bool fits_int64() const { return fits_; }
+  // The step saturates: saturated() gives what operator() does, without the wrap.
+  [[nodiscard]] bool saturates() const { return saturates_; }
 
+  // Both the clamp and the wrap, each the identity in the other mode: no branch, so a loop of
+  // requantizations vectorizes.
   [[nodiscard]] std::int64_t operator()(std::int64_t v) const {
+    v = saturated(v);
+    return ((v & mask_) ^ sign_) - sign_;
+  }
+  // Only where saturates(): a plan whose steps all saturate leaves out the wrap's identity
+  // operations (three of ten).
+  [[nodiscard]] std::int64_t saturated(std::int64_t v) const {
     v = static_cast<std::int64_t>(static_cast<std::uint64_t>(v) << lshift_);
     v = (v + bias_ + ((v >> rshift_) & odd_)) >> rshift_;  // >>: arithmetic, floor
-    if (!wrap_) return std::min(std::max(v, lo_), hi_);
-    return ((v & mask_) ^ sign_) - sign_;
+    return std::min(std::max(v, lo_), hi_);
   }
 
  private:
@@ -63,8 +129,20 @@ class Requant {
   std::int64_t hi_ = std::numeric_limits<std::int64_t>::max();
   std::int64_t mask_ = -1;
   std::int64_t sign_ = 0;
-  bool wrap_ = false;
+  bool saturates_ = true;
   bool fits_ = true;
+};
+
+// A requantization that saturates (Requant::saturated): the steps of a plan that never wraps.
+class Saturate {
+ public:
+  Saturate() = default;
+  Saturate(Format from, Format to, Round round) : r_(from, to, round, Overflow::saturate) {}
+  [[nodiscard]] bool fits_int64() const { return r_.fits_int64(); }
+  [[nodiscard]] std::int64_t operator()(std::int64_t v) const { return r_.saturated(v); }
+
+ private:
+  Requant r_;
 };
 
 // Exact add and sub (fx::add, fx::sub): both operands shifted left to the result's binary point.

@@ -95,6 +95,7 @@ EOT
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["pipeline"] == sys.argv[2] and r["config"] == "default" and r["vectors"] == 5000, r
+assert r["isa"] in ("baseline", "avx2", "avx512"), r
 for part in ("model", "native", "rtl", "bare_rtl", "cosim", "cosim_jobs", "icarus"):
     assert r[part]["vectors_per_s"] > 0 and r[part]["outputs_per_s"] > 0, (part, r)
 assert 1 <= r["icarus"]["vectors"] <= 5000 and r["icarus"]["cycles_per_s"] > 0, r
@@ -105,6 +106,21 @@ for ratio in ("model_native", "model_rtl", "rtl_bare_rtl", "cosim_rtl", "jobs_co
 assert 0 < r["ratios"]["cosim_ceiling_rtl"] < 1, r
 EOT
     done
+    # The vectorized kernels' baseline code, whatever this CPU runs by default: the native kernel
+    # against the model, both on it.
+    for p in lirp lyon; do
+      PHONGSIM_ISA=baseline "$phongsim" bench "$p" --vectors 5000 --no-icarus --json "$tmp/$p.json" \
+        >"$tmp/out" 2>&1 || fail "bench $p on baseline: $(cat "$tmp/out")"
+      grep -q "native kernel bit-identical to the model on all 5000 vectors" "$tmp/out" ||
+        fail "bench $p on baseline: no native check: $(cat "$tmp/out")"
+      grep -q '"isa": "baseline"' "$tmp/$p.json" || fail "bench $p: not on baseline: $(cat "$tmp/$p.json")"
+    done
+    # An instruction set that does not exist is refused up front, in one line.
+    status=0
+    PHONGSIM_ISA=avx3 "$phongsim" bench lirp --vectors 10 >"$tmp/out" 2>"$tmp/err" || status=$?
+    [ "$status" = 2 ] && [ "$(wc -l <"$tmp/err")" = 1 ] &&
+      grep -q "PHONGSIM_ISA=avx3: not an instruction set" "$tmp/err" ||
+      fail "PHONGSIM_ISA=avx3: status $status: $(cat "$tmp/err")"
     ;;
 
   trace)

@@ -9,9 +9,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "base/error.h"
 #include "base/rng.h"
 #include "model/config.h"
 #include "model/kb.h"
@@ -51,11 +54,17 @@ TEST(Requant, EveryValueEveryModeMatchesResizeRaw) {
       for (const auto round : {fx::Round::truncate, fx::Round::half_up, fx::Round::half_even}) {
         for (const auto overflow : {fx::Overflow::wrap, fx::Overflow::saturate}) {
           const fx::Requant step(from, to, round, overflow);
+          const fx::Saturate clamp(from, to, round);  // the saturating step without the wrap
           ASSERT_TRUE(step.fits_int64());
+          ASSERT_EQ(step.saturates(), overflow == fx::Overflow::saturate);
           for (std::int64_t x = from.min_raw(); x <= from.max_raw(); ++x) {
-            ASSERT_EQ(step(x), fx::resize_raw(x, from, to, round, overflow))
+            const std::int64_t want = fx::resize_raw(x, from, to, round, overflow);
+            ASSERT_EQ(step(x), want)
                 << from.str() << " -> " << to.str() << " " << fx::to_string(round) << " "
                 << fx::to_string(overflow) << " x = " << x;
+            if (step.saturates()) {
+              ASSERT_EQ(clamp(x), want) << from.str() << " -> " << to.str() << " x = " << x;
+            }
             ++checked;
           }
         }
@@ -246,6 +255,34 @@ TEST_P(PlanTest, PlanEqualsStagePath) {
     (void)model_->eval(std::span<const std::int64_t>(vectors).subspan(i * n_in, n_in), single);
   }
   EXPECT_EQ(single, want) << name_;
+
+  // The batch kernels compiled for every instruction set this CPU runs (model/plan.h), not
+  // only the one it picks.
+  const fx::Isa chosen = fx::kernel_isa();
+  for (const fx::Isa isa : fx::supported_isas()) {
+    fx::set_kernel_isa(isa);
+    std::vector<std::int64_t> on_isa;
+    model_->reset();
+    (void)model_->eval_batch(vectors, on_isa);
+    EXPECT_EQ(on_isa, want) << name_ << " on " << fx::isa_name(isa);
+  }
+  fx::set_kernel_isa(chosen);
+}
+
+TEST(KernelIsa, TheWidestSupportedByDefaultAndOnlySupportedOnesChosen) {
+  const std::vector<fx::Isa> isas = fx::supported_isas();
+  ASSERT_FALSE(isas.empty());
+  EXPECT_EQ(isas.front(), fx::Isa::baseline);
+  if (std::getenv("PHONGSIM_ISA") == nullptr) {
+    EXPECT_EQ(fx::kernel_isa(), isas.back());
+  }
+  const fx::Isa chosen = fx::kernel_isa();
+  for (const fx::Isa isa : {fx::Isa::baseline, fx::Isa::avx2, fx::Isa::avx512}) {
+    if (std::find(isas.begin(), isas.end(), isa) == isas.end()) {
+      EXPECT_THROW(fx::set_kernel_isa(isa), Error) << fx::isa_name(isa);
+      EXPECT_EQ(fx::kernel_isa(), chosen);
+    }
+  }
 }
 
 std::string Name(const ::testing::TestParamInfo<Item>& info) {

@@ -117,7 +117,7 @@ UnitImage pixel_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
     const Fragment& fr = f.fragments[i];
     img.at(fr.x, fr.y) = to_rgb8(combine(fr, f.lighting.lights, a));
   }
-  return {std::move(img), {unit.frame(), f.fragments.size(), {}}};
+  return {std::move(img), {unit.frame(), f.fragments.size(), {}, {}}};
 }
 
 namespace {
@@ -162,7 +162,7 @@ struct TrianglePrograms {
   }
   // The frame's cycles and each program's, by triangle.
   [[nodiscard]] FrameReport frame(const Unit& unit) const {
-    FrameReport r{unit.frame(), pixels, {}};
+    FrameReport r{unit.frame(), pixels, {}, {}};
     for (std::size_t k = 0; k < tris.size(); ++k) {
       r.triangles.emplace_back(tris[k], unit.vector_cycles()[k]);
     }
@@ -369,7 +369,7 @@ UnitImage kb_unit(const Frame& f, Unit& unit, const RenderProgress& progress,
     }
     at += per_pixel * length;
   }
-  return {std::move(img), {unit.frame(), pixels, {}}};
+  return {std::move(img), {unit.frame(), pixels, {}, {}}};
 }
 
 }  // namespace phongsim::shading
