@@ -16,7 +16,7 @@ KbFormats KbFormats::from_config(const Config& cfg) {
 
 KbPlan::KbPlan(const KbFormats& f)
     : wrap_shift_(64 - f.acc.width()),
-      out_(f.acc, f.out, f.out_round, fx::Overflow::saturate),
+      out_(f.acc, f.out, f.out_round),
       one_(f.acc.int_bits >= 1 ? std::int64_t{1} << f.acc.frac_bits : f.acc.max_raw()) {}
 
 KbModel::KbModel(const KbFormats& formats, bool stages)
@@ -57,9 +57,12 @@ void KbModel::pixel(const Ops& ops, std::int64_t d1_step, std::int64_t d2_step,
 }
 
 template <class Ops>
-void KbModel::finish_span(const Ops& ops, std::vector<std::int64_t>& out) {
-  // pixel() with the same steps until the span ends, written straight into `out`.
-  const auto count = static_cast<std::size_t>(s_.last - s_.i + 1);
+void KbModel::steady(const Ops& ops, std::int64_t stop, std::vector<std::int64_t>& out) {
+  // pixel() with the span's own steps for pixels i .. stop - 1 (at most to the span's end),
+  // written straight into `out`.
+  const std::int64_t end = std::min(stop, s_.last + 1);
+  if (!s_.running || s_.i >= end) return;
+  const auto count = static_cast<std::size_t>(end - s_.i);
   const std::size_t at = out.size();
   out.resize(at + 2 * count);
   std::int64_t* o = out.data() + at;
@@ -72,11 +75,15 @@ void KbModel::finish_span(const Ops& ops, std::vector<std::int64_t>& out) {
     f = ops.wrap_add(f, d1);
     d1 = ops.wrap_add(d1, d2);
   }
-  o[2 * count - 1] = 1;
   s_.f = f;
   s_.d1 = d1;
-  s_.i = s_.last;
-  s_.running = false;
+  if (end == s_.last + 1) {  // the span's last pixel
+    o[2 * count - 1] = 1;
+    s_.i = s_.last;
+    s_.running = false;
+  } else {
+    s_.i = end;
+  }
 }
 
 template <class Ops>
@@ -95,14 +102,14 @@ std::size_t KbModel::step(const Ops& ops, std::span<const std::int64_t> in,
   } else if (!s_.running) {  // an event word left over after its span: dropped
     --s_.remaining;
   } else {  // an event word: pixels before its index go out without it
-    while (s_.running && s_.i < n) pixel(ops, s_.d1, s_.d2, out);
+    steady(ops, n, out);
     if (s_.running) {
       pixel(ops, in[5] != 0 ? in[3] : s_.d1, in[4], out);
     }
     --s_.remaining;
   }
   // Once no event can be due, the rest of the span goes out.
-  if (s_.running && s_.remaining == 0) finish_span(ops, out);
+  if (s_.running && s_.remaining == 0) steady(ops, s_.last + 1, out);
   return (out.size() - before) / 2;
 }
 

@@ -45,7 +45,7 @@ class KbPlan {
 
  private:
   int wrap_shift_ = 0;    // 64 - acc's width
-  fx::Requant out_;       // clamped accumulator to the output format
+  fx::Saturate out_;      // clamped accumulator to the output format
   std::int64_t one_ = 0;  // clamp01's upper bound (acc has no integer bit: never reached)
 };
 
@@ -93,9 +93,10 @@ class KbModel final : public PipelineModel {
   template <class Ops>
   void pixel(const Ops& ops, std::int64_t d1_step, std::int64_t d2_step,
              std::vector<std::int64_t>& out);
-  // Emits the rest of the span (no event word is due any more).
+  // Emits pixels s_.i .. stop - 1 with the span's own steps (no event word applies to them),
+  // ending the span if its last pixel is among them.
   template <class Ops>
-  void finish_span(const Ops& ops, std::vector<std::int64_t>& out);
+  void steady(const Ops& ops, std::int64_t stop, std::vector<std::int64_t>& out);
 
   KbFormats f_;
   fx::Format sum_;  // f + d1 before wrapping; refused at construction if over the model's limit

@@ -37,8 +37,10 @@ void set_kernel_isa(Isa isa);
 #endif
 
 namespace detail {
-// flatten: everything body() calls that the compiler can see is inlined, hence compiled for
-// the function's instruction set (a call it cannot inline runs baseline code).
+// flatten inlines what body() calls, compiled for the function's instruction set; but GCC
+// inlines across instruction sets only functions declared inline (templates, lambdas, members
+// defined in their class). A kernel's other helpers are [[gnu::always_inline]] inline (as
+// LyonPlan::block is), or they would run baseline code.
 #ifdef PHONGSIM_ISA_CLONES
 template <class Body>
 [[gnu::target("arch=x86-64-v4"), gnu::flatten]] void on_avx512(Body& body) {

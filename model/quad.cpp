@@ -17,7 +17,7 @@ QuadFormats QuadFormats::from_config(const Config& cfg) {
 }
 
 QuadPlan::QuadPlan(const QuadFormats& f)
-    : out_(f.acc, f.out, f.out_round, fx::Overflow::saturate),
+    : out_(f.acc, f.out, f.out_round),
       one_(f.acc.int_bits >= 1 ? std::int64_t{1} << f.acc.frac_bits : f.acc.max_raw()),
       acc_shift_(64 - f.acc.width()),
       q_shift_(64 - f.q_bits()),

@@ -65,7 +65,7 @@ class QuadPlan {
     return out_(std::min(std::max(f, std::int64_t{0}), one_));
   }
 
-  fx::Requant out_;
+  fx::Saturate out_;
   std::int64_t one_ = 0;  // clamp01's upper bound
   int acc_shift_ = 0;     // 64 - width(acc)
   int q_shift_ = 0;       // 64 - q_bits

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "base/error.h"
 
 namespace phongsim {
@@ -26,6 +28,7 @@ void ShadeKbModel::reset() {
   for (KbModel& e : engines_) e.reset();
   left_ = {};
   for (auto& p : pixels_) p.clear();
+  taken_ = {};
   spans_.clear();
   i_ = 0;
 }
@@ -56,29 +59,45 @@ std::size_t ShadeKbModel::eval(std::span<const std::int64_t> in, std::vector<std
   for (int c = 0; c < kChannels; ++c) {
     if ((r.targets >> c & 1U) == 0) continue;
     const auto word = channel_word(in, c);
-    scratch_.clear();
-    (void)engines_[static_cast<std::size_t>(c)].eval(word, scratch_);
-    for (std::size_t k = 0; k + 1 < scratch_.size(); k += 2) {
-      pixels_[static_cast<std::size_t>(c)].push_back({scratch_[k], scratch_[k + 1] != 0});
-    }
+    (void)engines_[static_cast<std::size_t>(c)].eval(word, pixels_[static_cast<std::size_t>(c)]);
   }
   // Join: one pixel when every channel has one; x = x0 + i (wrapping at 2048), y the span's.
-  std::size_t emitted = 0;
+  std::size_t emitted = pixels_[0].size() - taken_[0];
+  for (std::size_t c = 1; c < kChannels; ++c) {
+    emitted = std::min(emitted, pixels_[c].size() - taken_[c]);
+  }
+  emitted /= 2;
   const std::int64_t coord_mask = (std::int64_t{1} << kCoordBits) - 1;
-  while (!pixels_[0].empty() && !pixels_[1].empty() && !pixels_[2].empty()) {
+  const std::int64_t* ch[kChannels];
+  for (std::size_t c = 0; c < kChannels; ++c) ch[c] = pixels_[c].data() + taken_[c];
+  const std::size_t at = out.size();
+  out.resize(at + 5 * emitted);
+  std::int64_t* o = out.data() + at;
+  for (std::size_t k = 0; k < 2 * emitted; k += 2, o += 5) {
     if (spans_.empty()) throw Error("shade_kb model: a pixel without a span");  // cannot happen
     const Span& s = spans_.front();
-    out.insert(out.end(), {(s.x + i_) & coord_mask, s.y, pixels_[0].front().value,
-                           pixels_[1].front().value, pixels_[2].front().value});
-    const bool last = pixels_[0].front().last;
-    for (auto& p : pixels_) p.pop_front();
-    if (last) {
+    o[0] = (s.x + i_) & coord_mask;
+    o[1] = s.y;
+    for (std::size_t c = 0; c < kChannels; ++c) o[2 + c] = ch[c][k];
+    if (ch[0][k + 1] != 0) {  // the span's last pixel
       spans_.pop_front();
       i_ = 0;
     } else {
       i_ = (i_ + 1) & coord_mask;
     }
-    ++emitted;
+  }
+  // What the join took leaves the queues: all of it, or a prefix once it is long (a channel
+  // runs ahead while the others wait for their event words).
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    std::vector<std::int64_t>& p = pixels_[c];
+    taken_[c] += 2 * emitted;
+    if (taken_[c] == p.size()) {
+      p.clear();
+      taken_[c] = 0;
+    } else if (taken_[c] >= 4096) {
+      p.erase(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(taken_[c]));
+      taken_[c] = 0;
+    }
   }
   return emitted;
 }

@@ -60,19 +60,17 @@ class ShadeKbModel final : public PipelineModel {
   [[nodiscard]] KbModel& engine(int ch) { return engines_[static_cast<std::size_t>(ch)]; }
 
  private:
-  struct Pixel {
-    std::int64_t value = 0;
-    bool last = false;
-  };
   struct Span {
     std::int64_t x = 0, y = 0;
   };
   std::array<KbModel, kChannels> engines_;
-  std::array<std::int64_t, kChannels> left_{};       // demux: events still due per channel
-  std::array<std::deque<Pixel>, kChannels> pixels_;  // engine outputs the join has not taken
-  std::deque<Span> spans_;                           // span queue: x0, y of spans in flight
-  std::int64_t i_ = 0;                               // join: pixel index in the span
-  std::vector<std::int64_t> scratch_;
+  std::array<std::int64_t, kChannels> left_{};  // demux: events still due per channel
+  // Each engine's outputs, (value, last) pairs as KbModel::eval writes them; the join has taken
+  // the first taken_[c] numbers of pixels_[c].
+  std::array<std::vector<std::int64_t>, kChannels> pixels_;
+  std::array<std::size_t, kChannels> taken_{};
+  std::deque<Span> spans_;  // span queue: x0, y of spans in flight
+  std::int64_t i_ = 0;      // join: pixel index in the span
 };
 
 }  // namespace phongsim
