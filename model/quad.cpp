@@ -23,7 +23,11 @@ QuadPlan::QuadPlan(const QuadFormats& f)
       q_shift_(64 - f.q_bits()),
       r_mask_((std::uint64_t{1} << f.r_bits()) - 1) {}
 
-std::size_t QuadPlan::walk(const QuadProgram& p, std::vector<std::int64_t>& out) const {
+template <bool Numbered>
+std::size_t QuadPlan::walk_rows(const QuadProgram& p, std::int64_t number,
+                                std::vector<std::int64_t>& out) const {
+  constexpr std::size_t kStride = Numbered ? 6 : 5;  // x, y, [number,] r, g, b
+  constexpr std::size_t kColour = kStride - 3;
   if (p.y0 > p.y1) return 0;
   const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
   std::int64_t col_f[3], col_gy[3], g0[3], a2[3], c2[3], b[3];
@@ -59,13 +63,14 @@ std::size_t QuadPlan::walk(const QuadProgram& p, std::vector<std::int64_t>& out)
       }
       const auto count = static_cast<std::size_t>(upper - lower + 1);
       const std::size_t at = out.size();
-      out.resize(at + 5 * count);
+      out.resize(at + kStride * count);
       std::int64_t* o = out.data() + at;
-      for (std::int64_t x = lower; x <= upper; ++x, o += 5) {
+      for (std::int64_t x = lower; x <= upper; ++x, o += kStride) {
         o[0] = x;
         o[1] = y;
+        if constexpr (Numbered) o[2] = number;
         for (int c = 0; c < 3; ++c) {
-          o[2 + c] = output(f[c]);
+          o[kColour + c] = output(f[c]);
           f[c] = wrap(u(f[c]) + u(g[c]));
           g[c] = wrap(u(g[c]) + u(a2[c]));
         }
@@ -88,6 +93,15 @@ std::size_t QuadPlan::walk(const QuadProgram& p, std::vector<std::int64_t>& out)
     }
   }
   return pixels;
+}
+
+std::size_t QuadPlan::walk(const QuadProgram& p, std::vector<std::int64_t>& out) const {
+  return walk_rows<false>(p, 0, out);
+}
+
+std::size_t QuadPlan::walk(const QuadProgram& p, std::int64_t number,
+                           std::vector<std::int64_t>& out) const {
+  return walk_rows<true>(p, number, out);
 }
 
 QuadModel::QuadModel(const QuadFormats& formats) : f_(formats), plan_(f_) {

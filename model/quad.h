@@ -56,8 +56,13 @@ class QuadPlan {
 
   [[nodiscard]] bool usable() const { return out_.fits_int64(); }
   std::size_t walk(const QuadProgram& p, std::vector<std::int64_t>& out) const;
+  // The same with `number` after x and y in every pixel (shade_quad's triangle number).
+  std::size_t walk(const QuadProgram& p, std::int64_t number, std::vector<std::int64_t>& out) const;
 
  private:
+  template <bool Numbered>
+  std::size_t walk_rows(const QuadProgram& p, std::int64_t number,
+                        std::vector<std::int64_t>& out) const;
   [[nodiscard]] std::int64_t wrap(std::uint64_t bits) const {  // modulo 2^width(acc), signed
     return static_cast<std::int64_t>(bits << acc_shift_) >> acc_shift_;
   }

@@ -11,9 +11,12 @@ ShadeQuadModel::ShadeQuadModel(const QuadFormats& formats) : walker_(formats) {
 }
 
 std::size_t ShadeQuadModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
+  const std::int64_t tri = in[kProgramFields];
+  if (walker_.plan().usable()) {  // the plan writes the number into each pixel itself
+    return walker_.plan().walk(QuadModel::program(in.first(kProgramFields)), tri, out);
+  }
   walked_.clear();
   const std::size_t n = walker_.eval(in.first(kProgramFields), walked_);
-  const std::int64_t tri = in[kProgramFields];
   const std::size_t at = out.size();
   out.resize(at + 6 * n);
   std::int64_t* o = out.data() + at;
