@@ -14,6 +14,9 @@ namespace {
 constexpr Isa kIsas[] = {Isa::baseline, Isa::avx2, Isa::avx512};
 
 bool supported(Isa isa) {
+#ifdef PHONGSIM_ISA_CLONES
+  __builtin_cpu_init();  // harmless if done; needed if this runs before libgcc's constructor
+#endif
   switch (isa) {
     case Isa::baseline:
       return true;
