@@ -110,29 +110,28 @@ CoverpointSampler coverpoints(const PipelineModel& model, const Config& cfg) {
 // prod = a·delta S3.20, sum = (p0 << 10) + prod S4.20, p = rq(sum) dropping 10 bits.
 // Laid out as the model's plan is (LirpPlan::run), so the two are compared on equal terms: a
 // block at a time on structure-of-arrays temporaries, run on the same instruction set
-// (fx::on_kernel_isa).
-void native_rows(const std::int64_t* in, std::int64_t* out, std::size_t n) {
-  fx::for_each_block<7, 3>(
-      in, out, n, [](const std::int64_t* const* f, std::int64_t* const* o, std::size_t m) {
-        for (int c = 0; c < 3; ++c) {
-          const std::int64_t* p0 = f[c];
-          const std::int64_t* p1 = f[3 + c];
-          const std::int64_t* a = f[6];
-          alignas(64) std::int64_t p[fx::kBlock];  // a local: no aliasing
-          for (std::size_t i = 0; i < m; ++i) {
-            const std::int64_t sum = (p0[i] << 10) + a[i] * (p1[i] - p0[i]);
-            p[i] = std::clamp<std::int64_t>((sum + 511 + ((sum >> 10) & 1)) >> 10, -2048, 2047);
-          }
-          std::copy_n(p, m, o[c]);
-        }
-      });
-}
-
+// (fx::on_kernel_isa; the loops inside the call, so that they are compiled for that set).
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
   const std::size_t n = in.size() / 7;
   const std::size_t at = out.size();
   out.resize(at + 3 * n);
-  fx::on_kernel_isa([&] { native_rows(in.data(), out.data() + at, n); });
+  fx::on_kernel_isa([&] {
+    fx::for_each_block<7, 3>(
+        in.data(), out.data() + at, n,
+        [](const std::int64_t* const* f, std::int64_t* const* o, std::size_t m) {
+          for (int c = 0; c < 3; ++c) {
+            const std::int64_t* p0 = f[c];
+            const std::int64_t* p1 = f[3 + c];
+            const std::int64_t* a = f[6];
+            alignas(64) std::int64_t p[fx::kBlock];  // a local: no aliasing
+            for (std::size_t i = 0; i < m; ++i) {
+              const std::int64_t sum = (p0[i] << 10) + a[i] * (p1[i] - p0[i]);
+              p[i] = std::clamp<std::int64_t>((sum + 511 + ((sum >> 10) & 1)) >> 10, -2048, 2047);
+            }
+            std::copy_n(p, m, o[c]);
+          }
+        });
+  });
   return n;
 }
 

@@ -410,53 +410,53 @@ std::int64_t rq(std::int64_t v) {
 }
 
 // Laid out as the model's plan is (model/lyon_plan.cpp), so the two are compared on equal terms:
-// a block of pixels at a time on structure-of-arrays temporaries, run on the same
-// instruction set (fx::on_kernel_isa).
-void native_rows(const std::int64_t* in, std::int64_t* out, std::size_t n) {
-  fx::for_each_block<14, 2>(
-      in, out, n, [](const std::int64_t* const* f, std::int64_t* const* o, std::size_t m) {
-        alignas(64) std::int64_t spec[fx::kBlock], diff[fx::kBlock];  // locals: no aliasing
-        for (std::size_t i = 0; i < m; ++i) {
-          const auto p = [&](int field) { return f[field][i]; };  // n0 0-2, n1 3-5, a 6, shin 13
-          const auto v = [&](int c) { return f[7 + c][i]; };
-          const auto l = [&](int c) { return f[10 + c][i]; };
-          std::int64_t np[3], nv[3], d[3];
-          for (int c = 0; c < 3; ++c) {  // N' (S1.10) = rq(S4.20: (n0 << 10) + a·(n1 - n0))
-            np[c] = rq<10, -2048, 2047>((p(c) << 10) + p(6) * (p(3 + c) - p(c)));
-          }
-          // z 1.12 from N'·N' (S5.20); y S0.12 = 1 - z; g 1.12 from 1 + (y + y²)/2 (S2.25).
-          const std::int64_t z = rq<8, 0, 8191>(np[0] * np[0] + np[1] * np[1] + np[2] * np[2]);
-          const std::int64_t y = rq<0, -4096, 4095>(4096 - z);
-          const std::int64_t g = rq<13, 0, 8191>((std::int64_t{1} << 25) + (y << 12) + y * y);
-          for (int c = 0; c < 3; ++c) nv[c] = rq<12, -2048, 2047>(g * np[c]);  // N S1.10 from S2.22
-          diff[i] = rq<8, 0, 8191>(nv[0] * l(0) + nv[1] * l(1) + nv[2] * l(2));  // diff 1.12
-          const std::int64_t dot = rq<8, -8192, 8191>(nv[0] * v(0) + nv[1] * v(1) + nv[2] * v(2));
-          for (int c = 0; c < 3; ++c) {  // R S1.10 from 2(N·V)N - V (S5.21); D S1.10 = R - L
-            const std::int64_t r = rq<11, -2048, 2047>(dot * nv[c] - (v(c) << 11));
-            d[c] = rq<0, -2048, 2047>(r - l(c));
-          }
-          // D·D 3.19; x/2^k = n·D·D/8 as 13.22; xf 0.16; sq 1.16 = 1 - xf, squared twice;
-          // spec 1.12.
-          const std::int64_t dd =
-              rq<1, 0, (std::int64_t{1} << 22) - 1>(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-          const std::int64_t xk = p(13) * dd;
-          const std::int64_t xf = rq<6, 0, 65535>(xk);
-          std::int64_t sq = rq<0, 0, 131071>(65536 - xf);
-          sq = rq<16, 0, 131071>(sq * sq);
-          sq = rq<16, 0, 131071>(sq * sq);
-          const std::int64_t shaded = rq<4, 0, 8191>(sq);
-          spec[i] = (xk >> 22) != 0 ? 0 : shaded;
-        }
-        std::copy_n(spec, m, o[0]);
-        std::copy_n(diff, m, o[1]);
-      });
-}
-
+// a block of pixels at a time on structure-of-arrays temporaries, run on the same instruction
+// set (fx::on_kernel_isa; the loops inside the call, so that they are compiled for that set).
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
   const std::size_t n = in.size() / 14;
   const std::size_t at = out.size();
   out.resize(at + 2 * n);
-  fx::on_kernel_isa([&] { native_rows(in.data(), out.data() + at, n); });
+  fx::on_kernel_isa([&] {
+    fx::for_each_block<14, 2>(
+        in.data(), out.data() + at, n,
+        [](const std::int64_t* const* f, std::int64_t* const* o, std::size_t m) {
+          alignas(64) std::int64_t spec[fx::kBlock], diff[fx::kBlock];  // locals: no aliasing
+          for (std::size_t i = 0; i < m; ++i) {
+            const auto p = [&](int field) { return f[field][i]; };  // n0 0-2, n1 3-5, a 6, shin 13
+            const auto v = [&](int c) { return f[7 + c][i]; };
+            const auto l = [&](int c) { return f[10 + c][i]; };
+            std::int64_t np[3], nv[3], d[3];
+            for (int c = 0; c < 3; ++c) {  // N' (S1.10) = rq(S4.20: (n0 << 10) + a·(n1 - n0))
+              np[c] = rq<10, -2048, 2047>((p(c) << 10) + p(6) * (p(3 + c) - p(c)));
+            }
+            // z 1.12 from N'·N' (S5.20); y S0.12 = 1 - z; g 1.12 from 1 + (y + y²)/2 (S2.25).
+            const std::int64_t z = rq<8, 0, 8191>(np[0] * np[0] + np[1] * np[1] + np[2] * np[2]);
+            const std::int64_t y = rq<0, -4096, 4095>(4096 - z);
+            const std::int64_t g = rq<13, 0, 8191>((std::int64_t{1} << 25) + (y << 12) + y * y);
+            for (int c = 0; c < 3; ++c)
+              nv[c] = rq<12, -2048, 2047>(g * np[c]);  // N S1.10 from S2.22
+            diff[i] = rq<8, 0, 8191>(nv[0] * l(0) + nv[1] * l(1) + nv[2] * l(2));  // diff 1.12
+            const std::int64_t dot = rq<8, -8192, 8191>(nv[0] * v(0) + nv[1] * v(1) + nv[2] * v(2));
+            for (int c = 0; c < 3; ++c) {  // R S1.10 from 2(N·V)N - V (S5.21); D S1.10 = R - L
+              const std::int64_t r = rq<11, -2048, 2047>(dot * nv[c] - (v(c) << 11));
+              d[c] = rq<0, -2048, 2047>(r - l(c));
+            }
+            // D·D 3.19; x/2^k = n·D·D/8 as 13.22; xf 0.16; sq 1.16 = 1 - xf, squared twice;
+            // spec 1.12.
+            const std::int64_t dd =
+                rq<1, 0, (std::int64_t{1} << 22) - 1>(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            const std::int64_t xk = p(13) * dd;
+            const std::int64_t xf = rq<6, 0, 65535>(xk);
+            std::int64_t sq = rq<0, 0, 131071>(65536 - xf);
+            sq = rq<16, 0, 131071>(sq * sq);
+            sq = rq<16, 0, 131071>(sq * sq);
+            const std::int64_t shaded = rq<4, 0, 8191>(sq);
+            spec[i] = (xk >> 22) != 0 ? 0 : shaded;
+          }
+          std::copy_n(spec, m, o[0]);
+          std::copy_n(diff, m, o[1]);
+        });
+  });
   return n;
 }
 
