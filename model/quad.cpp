@@ -29,14 +29,17 @@ std::size_t QuadPlan::walk_rows(const QuadProgram& p, std::int64_t number,
   constexpr std::size_t kStride = Numbered ? 6 : 5;  // x, y, [number,] r, g, b
   constexpr std::size_t kColour = kStride - 3;
   if (p.y0 > p.y1) return 0;
+  // The plan copied: stores to `out` may alias *this as far as the compiler knows.
+  const QuadPlan plan = *this;
   const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
-  std::int64_t col_f[3], col_gy[3], g0[3], a2[3], c2[3], b[3];
+  std::int64_t col_f[3], col_gy[3], g0[3], c2[3], b[3];
+  std::uint64_t a[3];
   for (int c = 0; c < 3; ++c) {
     const QuadChannel& ch = p.channels[c];
     col_f[c] = ch.f;
     col_gy[c] = ch.gy;
     g0[c] = ch.gx;
-    a2[c] = static_cast<std::int64_t>(u(ch.a) << 1);
+    a[c] = u(ch.a);
     c2[c] = static_cast<std::int64_t>(u(ch.c) << 1);
     b[c] = ch.b;
   }
@@ -54,54 +57,66 @@ std::size_t QuadPlan::walk_rows(const QuadProgram& p, std::int64_t number,
       if (p.edges[k].kind == 2) upper = std::min(upper, q[k]);
     }
     if (lower <= upper) {
-      const std::int64_t i0 = lower - p.x0;
-      std::int64_t f[3], g[3];
-      for (int c = 0; c < 3; ++c) {
-        const std::uint64_t a = u(p.channels[c].a);
-        f[c] = wrap(u(col_f[c]) + u(i0) * u(g0[c]) + a * (u(i0) * (u(i0) - 1)));
-        g[c] = wrap(u(g0[c]) + ((a * u(i0)) << 1));
-      }
       const auto count = static_cast<std::size_t>(upper - lower + 1);
       const std::size_t at = out.size();
       out.resize(at + kStride * count);
       std::int64_t* o = out.data() + at;
-      for (std::int64_t x = lower; x <= upper; ++x, o += kStride) {
-        o[0] = x;
-        o[1] = y;
-        if constexpr (Numbered) o[2] = number;
+      for (std::size_t j = 0; j < count; ++j) {
+        o[kStride * j] = lower + static_cast<std::int64_t>(j);
+        o[kStride * j + 1] = y;
+        if constexpr (Numbered) o[kStride * j + 2] = number;
+      }
+      // The row's forward differences (f += g, g += 2a per pixel, all modulo 2^width(acc)) in
+      // closed form, f at column i = f + i·gx + a·i·(i - 1): the same modular sums, but each
+      // pixel independent of the last, so the loop vectorizes.
+      const std::uint64_t i0 = u(lower - p.x0);
+      constexpr std::size_t kRow = 64;
+      alignas(64) std::int64_t v[3][kRow];
+      for (std::size_t j0 = 0; j0 < count; j0 += kRow) {
+        const std::size_t m = std::min(kRow, count - j0);
+#pragma GCC unroll 3
         for (int c = 0; c < 3; ++c) {
-          o[kColour + c] = output(f[c]);
-          f[c] = wrap(u(f[c]) + u(g[c]));
-          g[c] = wrap(u(g[c]) + u(a2[c]));
+          const std::uint64_t f = u(col_f[c]), g = u(g0[c]), ac = a[c];
+          for (std::size_t j = 0; j < m; ++j) {
+            const std::uint64_t i = i0 + j0 + j;
+            v[c][j] = plan.output(plan.wrap(f + i * g + ac * (i * (i - 1))));
+          }
+        }
+        for (std::size_t j = 0; j < m; ++j) {
+          for (std::size_t c = 0; c < 3; ++c) o[kStride * (j0 + j) + kColour + c] = v[c][j];
         }
       }
       pixels += count;
     }
     if (y == p.y1) break;
     for (int c = 0; c < 3; ++c) {
-      col_f[c] = wrap(u(col_f[c]) + u(col_gy[c]));
-      col_gy[c] = wrap(u(col_gy[c]) + u(c2[c]));
-      g0[c] = wrap(u(g0[c]) + u(b[c]));
+      col_f[c] = plan.wrap(u(col_f[c]) + u(col_gy[c]));
+      col_gy[c] = plan.wrap(u(col_gy[c]) + u(c2[c]));
+      g0[c] = plan.wrap(u(g0[c]) + u(b[c]));
     }
     for (int k = 0; k < 3; ++k) {
       const QuadEdge& e = p.edges[k];
       const std::int64_t sum = r[k] + e.dr;
       const bool carry = u(sum) >= u(e.d);
-      q[k] = static_cast<std::int64_t>((u(q[k]) + u(e.dq) + (carry ? 1U : 0U)) << q_shift_) >>
-             q_shift_;
-      r[k] = static_cast<std::int64_t>(u(carry ? sum - e.d : sum) & r_mask_);
+      q[k] = static_cast<std::int64_t>((u(q[k]) + u(e.dq) + (carry ? 1U : 0U)) << plan.q_shift_) >>
+             plan.q_shift_;
+      r[k] = static_cast<std::int64_t>(u(carry ? sum - e.d : sum) & plan.r_mask_);
     }
   }
   return pixels;
 }
 
 std::size_t QuadPlan::walk(const QuadProgram& p, std::vector<std::int64_t>& out) const {
-  return walk_rows<false>(p, 0, out);
+  std::size_t n = 0;
+  fx::on_kernel_isa([&] { n = walk_rows<false>(p, 0, out); });
+  return n;
 }
 
 std::size_t QuadPlan::walk(const QuadProgram& p, std::int64_t number,
                            std::vector<std::int64_t>& out) const {
-  return walk_rows<true>(p, number, out);
+  std::size_t n = 0;
+  fx::on_kernel_isa([&] { n = walk_rows<true>(p, number, out); });
+  return n;
 }
 
 QuadModel::QuadModel(const QuadFormats& formats) : f_(formats), plan_(f_) {

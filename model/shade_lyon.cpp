@@ -48,45 +48,87 @@ ShadeLyonModel::ShadeLyonModel(const ShadeLyonFormats& formats)
               lyon_.outputs()[1]};
 }
 
-std::size_t ShadeLyonModel::pixels(std::span<const std::int64_t> in,
-                                   std::vector<std::int64_t>& walker_out,
-                                   std::vector<std::int64_t>& lyon_in) const {
-  const std::size_t base = walker_out.size();
-  const QuadProgram program = QuadModel::program(in.first(kProgramFields));
-  const std::size_t n = walker_.plan().usable() ? walker_.plan().walk(program, walker_out)
-                                                : walker_.walk(program, walker_out);
+void ShadeLyonModel::lyon_inputs(const std::int64_t* walked, std::size_t n,
+                                 std::span<const std::int64_t> in, std::int64_t* v) const {
   const std::int64_t half = std::int64_t{1} << f_.lyon.vec.frac_bits;       // 2c - 1 = C - 2^F
   const std::span<const std::int64_t> vls = in.subspan(kProgramFields, 7);  // v, l, shin
-  const std::size_t at = lyon_in.size();
-  lyon_in.resize(at + 14 * n);
-  std::int64_t* v = lyon_in.data() + at;
-  for (std::size_t p = 0; p < n; ++p, v += 14) {  // n0, n1, a, v, l, shin
-    const std::int64_t* px = walker_out.data() + base + 5 * p;
+  for (std::size_t p = 0; p < n; ++p, v += 14) {                            // n0, n1, a, v, l, shin
+    const std::int64_t* px = walked + 5 * p;
     for (int c = 0; c < 3; ++c) v[c] = v[3 + c] = px[2 + c] - half;
     v[6] = 0;
     std::copy(vls.begin(), vls.end(), v + 7);
   }
+}
+
+std::size_t ShadeLyonModel::walk(std::span<const std::int64_t> in,
+                                 std::vector<std::int64_t>& walker_out) const {
+  const QuadProgram program = QuadModel::program(in.first(kProgramFields));
+  return walker_.plan().usable() ? walker_.plan().walk(program, walker_out)
+                                 : walker_.walk(program, walker_out);
+}
+
+std::size_t ShadeLyonModel::pixels(std::span<const std::int64_t> in,
+                                   std::vector<std::int64_t>& walker_out,
+                                   std::vector<std::int64_t>& lyon_in) const {
+  const std::size_t base = walker_out.size();
+  const std::size_t n = walk(in, walker_out);
+  const std::size_t at = lyon_in.size();
+  lyon_in.resize(at + 14 * n);
+  lyon_inputs(walker_out.data() + base, n, in, lyon_in.data() + at);
   return n;
 }
 
 std::size_t ShadeLyonModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  walked_.clear();
-  lyon_in_.clear();
-  shaded_.clear();
-  const std::size_t n = pixels(in, walked_, lyon_in_);
-  (void)lyon_.eval_batch(lyon_in_, shaded_);
-  const std::int64_t tri = in[kProgramFields + 7];
-  const std::size_t at = out.size();
-  out.resize(at + 5 * n);
-  std::int64_t* o = out.data() + at;
-  for (std::size_t p = 0; p < n; ++p, o += 5) {
-    o[0] = walked_[5 * p];
-    o[1] = walked_[5 * p + 1];
-    o[2] = tri;
-    o[3] = shaded_[2 * p];
-    o[4] = shaded_[2 * p + 1];
+  return eval_batch(in.first(inputs_.size()), out);
+}
+
+// Programs walked until they have about kGroup pixels, then Lyon's unit on all of them in one
+// call (whole blocks of its plan, not a part-filled block per triangle), then their outputs;
+// a group's scratch stays in the caches.
+std::size_t ShadeLyonModel::eval_batch(std::span<const std::int64_t> in,
+                                       std::vector<std::int64_t>& out,
+                                       std::vector<std::uint32_t>* counts) {
+  constexpr std::size_t kGroup = 512;
+  const std::size_t n_in = inputs_.size();
+  const std::size_t programs = in.size() / n_in;
+  std::size_t total = 0;
+  for (std::size_t first = 0; first < programs;) {
+    walked_.clear();
+    sizes_.clear();
+    std::size_t end = first;
+    while (end < programs && walked_.size() < 5 * kGroup) {
+      sizes_.push_back(static_cast<std::uint32_t>(walk(in.subspan(end * n_in, n_in), walked_)));
+      ++end;
+    }
+    const std::size_t n = walked_.size() / 5;
+    // Grown, never cleared: every element read below is written first, so no zero-filling.
+    if (lyon_in_.size() < 14 * n) lyon_in_.resize(14 * n);
+    for (std::size_t k = first, p = 0; k < end; p += sizes_[k - first], ++k) {
+      lyon_inputs(walked_.data() + 5 * p, sizes_[k - first], in.subspan(k * n_in, n_in),
+                  lyon_in_.data() + 14 * p);
+    }
+    shaded_.clear();
+    (void)lyon_.eval_batch(std::span(lyon_in_).first(14 * n), shaded_);
+    const std::size_t at = out.size();
+    out.resize(at + 5 * n);
+    std::int64_t* o = out.data() + at;
+    const std::int64_t* px = walked_.data();
+    const std::int64_t* shade = shaded_.data();
+    for (std::size_t k = first; k < end; ++k) {
+      const std::int64_t tri = in[k * n_in + kProgramFields + 7];
+      for (std::uint32_t p = 0; p < sizes_[k - first]; ++p, o += 5, px += 5, shade += 2) {
+        o[0] = px[0];
+        o[1] = px[1];
+        o[2] = tri;
+        o[3] = shade[0];
+        o[4] = shade[1];
+      }
+    }
+    if (counts != nullptr) counts->insert(counts->end(), sizes_.begin(), sizes_.end());
+    total += n;
+    first = end;
   }
-  return n;
+  return total;
 }
 
 std::vector<std::int64_t> ShadeLyonModel::words(const ShadeLyonTriangle& t,

@@ -49,6 +49,8 @@ class ShadeLyonModel final : public PipelineModel {
   // Fields: the walker's program (x0 y0 x1 y1, e<k>_{kind,q,r,d,dq,dr}) with its channels named
   // n{x,y,z}_{f,gy,gx,a,b,c}, then v_{x,y,z} l_{x,y,z} shin tri; outputs x y tri spec diff.
   std::size_t eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) override;
+  std::size_t eval_batch(std::span<const std::int64_t> in, std::vector<std::int64_t>& out,
+                         std::vector<std::uint32_t>* counts = nullptr) override;
   [[nodiscard]] std::unique_ptr<PipelineModel> clone() const override {
     return std::make_unique<ShadeLyonModel>(*this);
   }
@@ -69,11 +71,21 @@ class ShadeLyonModel final : public PipelineModel {
   static constexpr int kTriBits = 16;
 
  private:
+  // The walker's pixels of program `in`, appended to walker_out.
+  std::size_t walk(std::span<const std::int64_t> in, std::vector<std::int64_t>& walker_out) const;
+  // Lyon's input vectors (14 fields each, to `v`) for the n walker pixels at `walked` of
+  // program `in`.
+  void lyon_inputs(const std::int64_t* walked, std::size_t n, std::span<const std::int64_t> in,
+                   std::int64_t* v) const;
+
   ShadeLyonFormats f_;
   QuadModel walker_;
   LyonModel lyon_;
-  // Scratch of eval: one program's walker pixels, Lyon inputs and Lyon outputs.
-  std::vector<std::int64_t> walked_, lyon_in_, shaded_;
+  // Scratch of eval_batch: the batch's walker pixels, pixels per program, Lyon inputs and
+  // Lyon outputs.
+  std::vector<std::int64_t> walked_;
+  std::vector<std::uint32_t> sizes_;
+  std::vector<std::int64_t> lyon_in_, shaded_;
 };
 
 }  // namespace phongsim

@@ -10,6 +10,8 @@
 #include <span>
 #include <vector>
 
+#include "model/plan.h"
+
 namespace phongsim {
 
 // Programs of `Stride` fields (the walker's 40 first; with `Numbered`, the last is the
@@ -17,7 +19,7 @@ namespace phongsim {
 // c2) appended to `out`: accumulators of AccWidth bits with AccFrac fraction bits, wrapping; each
 // output the accumulator clamped to [0, 1], rounded half_even to OutFrac fraction bits and
 // saturated to OutWidth unsigned bits; sub_bits 4 (DDA quotient 34 bits, remainder 20). Returns
-// the pixels.
+// the pixels. Call it inside fx::on_kernel_isa, so that it runs the plans' instruction set.
 template <int AccWidth, int AccFrac, int OutWidth, int OutFrac, std::size_t Stride, bool Numbered>
 std::size_t native_walker(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
   using u64 = std::uint64_t;
@@ -57,26 +59,33 @@ std::size_t native_walker(std::span<const std::int64_t> in, std::vector<std::int
         if (kind[k] == 2) upper = std::min(upper, q[k]);
       }
       if (lower <= upper) {
-        const auto i0 = static_cast<u64>(lower - x0);
-        std::int64_t f[3], g[3];
-        for (int c = 0; c < 3; ++c) {
-          const auto ac = static_cast<u64>(a[c]);
-          f[c] = wrap(static_cast<u64>(col_f[c]) + i0 * static_cast<u64>(g0[c]) +
-                      ac * (i0 * (i0 - 1)));
-          g[c] = wrap(static_cast<u64>(g0[c]) + ((ac * i0) << 1));
-        }
         const auto count = static_cast<std::size_t>(upper - lower + 1);
         const std::size_t base = out.size();
         out.resize(base + kOut * count);
         std::int64_t* o = out.data() + base;
-        for (std::int64_t x = lower; x <= upper; ++x, o += kOut) {
-          o[0] = x;
-          o[1] = y;
-          if constexpr (Numbered) o[2] = tri;
+        for (std::size_t j = 0; j < count; ++j) {
+          o[kOut * j] = lower + static_cast<std::int64_t>(j);
+          o[kOut * j + 1] = y;
+          if constexpr (Numbered) o[kOut * j + 2] = tri;
+        }
+        // Laid out as QuadPlan's walk: each pixel's accumulator in closed form, a block of a
+        // row's pixels at a time per channel (vectorized), then interleaved.
+        const auto i0 = static_cast<u64>(lower - x0);
+        constexpr std::size_t kRow = 64;
+        alignas(64) std::int64_t v[3][kRow];
+        for (std::size_t j0 = 0; j0 < count; j0 += kRow) {
+          const std::size_t m = std::min(kRow, count - j0);
+#pragma GCC unroll 3
           for (int c = 0; c < 3; ++c) {
-            o[kC + c] = value(f[c]);
-            f[c] = wrap(static_cast<u64>(f[c]) + static_cast<u64>(g[c]));
-            g[c] = wrap(static_cast<u64>(g[c]) + (static_cast<u64>(a[c]) << 1));
+            const auto f = static_cast<u64>(col_f[c]), g = static_cast<u64>(g0[c]),
+                       ac = static_cast<u64>(a[c]);
+            for (std::size_t j = 0; j < m; ++j) {
+              const u64 i = i0 + j0 + j;
+              v[c][j] = value(wrap(f + i * g + ac * (i * (i - 1))));
+            }
+          }
+          for (std::size_t j = 0; j < m; ++j) {
+            for (std::size_t c = 0; c < 3; ++c) o[kOut * (j0 + j) + kC + c] = v[c][j];
           }
         }
         pixels += count;

@@ -408,7 +408,9 @@ FrameCycles cycles(const Config&, std::span<const std::int64_t> in,
 
 // configs/quad/default.toml's walker by hand: acc S2.32, out 0.8.
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  return native_walker<35, 32, 8, 8, 40, false>(in, out);
+  std::size_t n = 0;
+  fx::on_kernel_isa([&] { n = native_walker<35, 32, 8, 8, 40, false>(in, out); });
+  return n;
 }
 
 // The domain of the accuracy claims (docs/quad.md, "Input contract"), per program.

@@ -313,39 +313,53 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
 
 // configs/shade_lyon/default.toml by hand: the walker of its normal components (acc S2.35, out
 // U1.11), each pixel's N' = 2c - 1 (c's raw value less 2^10, read as S1.10) into lyon/default's
-// native kernel (the same Lyon formats) with the program's V, L and shininess, a program at a
-// time.
+// native kernel (the same Lyon formats) with the program's V, L and shininess. Laid out as the
+// model's eval_batch: programs walked until they have 512 pixels, then Lyon's kernel on them all.
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
   constexpr std::size_t kProgram = ShadeLyonModel::kProgramFields, kStride = kProgram + 8;
   constexpr std::int64_t kOne = std::int64_t{1} << 10;
+  constexpr std::size_t kGroup = 512;
+  const std::size_t programs = in.size() / kStride;
   std::vector<std::int64_t> walked, lyon_in, shaded;
+  std::vector<std::size_t> sizes;
   std::size_t pixels = 0;
-  for (std::size_t at = 0; at + kStride <= in.size(); at += kStride) {
-    const std::int64_t* w = in.data() + at;
+  for (std::size_t first = 0; first < programs;) {
     walked.clear();
-    lyon_in.clear();
-    shaded.clear();
-    const std::size_t n =
-        native_walker<38, 35, 12, 11, kProgram, false>(in.subspan(at, kProgram), walked);
-    lyon_in.resize(14 * n);
-    for (std::size_t p = 0; p < n; ++p) {
-      std::int64_t* v = lyon_in.data() + 14 * p;
-      for (int c = 0; c < 3; ++c) v[c] = v[3 + c] = walked[5 * p + 2 + c] - kOne;
-      v[6] = 0;                             // a
-      std::copy_n(w + kProgram, 7, v + 7);  // v, l, shin
+    sizes.clear();
+    std::size_t end = first;
+    for (; end < programs && walked.size() < 5 * kGroup; ++end) {
+      const auto program = in.subspan(end * kStride, kProgram);
+      fx::on_kernel_isa([&] {
+        sizes.push_back(native_walker<38, 35, 12, 11, kProgram, false>(program, walked));
+      });
     }
+    const std::size_t n = walked.size() / 5;
+    lyon_in.resize(14 * n);
+    for (std::size_t k = first, p = 0; k < end; ++k) {
+      const std::int64_t* w = in.data() + k * kStride;
+      for (std::size_t i = 0; i < sizes[k - first]; ++i, ++p) {
+        std::int64_t* v = lyon_in.data() + 14 * p;
+        for (int c = 0; c < 3; ++c) v[c] = v[3 + c] = walked[5 * p + 2 + c] - kOne;
+        v[6] = 0;                             // a
+        std::copy_n(w + kProgram, 7, v + 7);  // v, l, shin
+      }
+    }
+    shaded.clear();
     (void)lyon_pipeline().native(lyon_in, shaded);
     const std::size_t base = out.size();
     out.resize(base + 5 * n);
-    for (std::size_t p = 0; p < n; ++p) {
-      std::int64_t* o = out.data() + base + 5 * p;
-      o[0] = walked[5 * p];
-      o[1] = walked[5 * p + 1];
-      o[2] = w[kStride - 1];
-      o[3] = shaded[2 * p];
-      o[4] = shaded[2 * p + 1];
+    for (std::size_t k = first, p = 0; k < end; ++k) {
+      for (std::size_t i = 0; i < sizes[k - first]; ++i, ++p) {
+        std::int64_t* o = out.data() + base + 5 * p;
+        o[0] = walked[5 * p];
+        o[1] = walked[5 * p + 1];
+        o[2] = in[k * kStride + kStride - 1];
+        o[3] = shaded[2 * p];
+        o[4] = shaded[2 * p + 1];
+      }
     }
     pixels += n;
+    first = end;
   }
   return pixels;
 }

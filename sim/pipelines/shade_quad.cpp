@@ -93,7 +93,10 @@ ModelError float_error(const Config& cfg, std::uint64_t samples, std::uint64_t s
 // configs/shade_quad/default.toml by hand: quad/default's walker (acc S2.32, out 0.8), the
 // triangle's number after the program and on each pixel.
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  return native_walker<35, 32, 8, 8, ShadeQuadModel::kProgramFields + 1, true>(in, out);
+  std::size_t n = 0;
+  fx::on_kernel_isa(
+      [&] { n = native_walker<35, 32, 8, 8, ShadeQuadModel::kProgramFields + 1, true>(in, out); });
+  return n;
 }
 
 void analyze(std::span<const Config> configs, std::uint64_t samples, std::uint64_t seed,
