@@ -112,20 +112,25 @@ double pow2(int k) {
 
 double round_scaled(double x, int frac_bits, Round round) {
   if (!std::isfinite(x)) throw Error(fmt::format("cannot quantize {}", x));
-  const double s = x * pow2(frac_bits);  // exact (power-of-two scaling)
-  const double f = std::floor(s);
-  const double rest = s - f;  // exact: 0 <= rest < 1
+  const double s = x * pow2(frac_bits);   // exact (power-of-two scaling)
+  if (!(std::abs(s) < 0x1p52)) return s;  // an integer already: every mode keeps it
+  // Below 2^52 in integers and without branches on the value: std::floor is a library call in
+  // baseline x86-64 code, and the comparisons' branches mispredict on random stimulus values.
+  const auto t = static_cast<std::int64_t>(s);  // toward zero, exact
+  const std::int64_t f = t - static_cast<std::int64_t>(static_cast<double>(t) > s);  // floor
+  const double rest = s - static_cast<double>(f);  // exact: 0 <= rest < 1
+  std::int64_t up = 0;
   switch (round) {
     case Round::truncate:
-      return f;
+      break;
     case Round::half_up:
-      return rest >= 0.5 ? f + 1 : f;
-    case Round::half_even:
-      if (rest > 0.5) return f + 1;
-      if (rest < 0.5) return f;
-      return std::fmod(f, 2.0) == 0.0 ? f : f + 1;
+      up = static_cast<std::int64_t>(rest >= 0.5);
+      break;
+    case Round::half_even:  // above the half, or on it with f odd
+      up = static_cast<std::int64_t>(rest > 0.5) | (static_cast<std::int64_t>(rest == 0.5) & f & 1);
+      break;
   }
-  return f;  // unreachable
+  return static_cast<double>(f + up);
 }
 
 bool raw_in_range(double scaled, Format fmt) {

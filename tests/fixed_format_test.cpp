@@ -195,6 +195,35 @@ TEST(RealTest, RoundScaledAndQuantizeInRange) {
   }
 }
 
+// round_scaled against its definition on the library's floor and fmod, over doubles of every
+// magnitude from 2^-60 to 2^70 (across 2^52 and 2^53, where doubles stop having fraction bits
+// and stop being odd), both signs, and exact ties (k + 1/2).
+TEST(RealTest, RoundScaledMatchesFloorDefinition) {
+  const auto reference = [](double x, int frac_bits, Round round) {
+    const double s = std::ldexp(x, frac_bits);
+    const double f = std::floor(s);
+    const double rest = s - f;
+    if (round == Round::truncate) return f;
+    if (round == Round::half_up) return rest >= 0.5 ? f + 1 : f;
+    if (rest != 0.5) return rest > 0.5 ? f + 1 : f;
+    return std::fmod(f, 2.0) == 0.0 ? f : f + 1;
+  };
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<int> exponent(-60, 70);
+  std::uniform_real_distribution<double> mantissa(1.0, 2.0);
+  std::uniform_int_distribution<int> frac(0, 12);
+  for (int i = 0; i < 200000; ++i) {
+    double x = std::ldexp(mantissa(rng), exponent(rng));
+    if (i % 4 == 1) x = std::ldexp(std::floor(x) + 0.5, 0);  // a tie at frac_bits 0 (or integer)
+    if (i % 2 == 1) x = -x;
+    const int fb = i % 4 == 1 ? 0 : frac(rng);
+    for (const Round r : kRounds) {
+      ASSERT_EQ(fx::round_scaled(x, fb, r), reference(x, fb, r))
+          << Real(x) << " frac_bits " << fb << " " << Mode(r, Overflow::wrap);
+    }
+  }
+}
+
 struct RealOverflowCase {
   double x;
   Format fmt;

@@ -51,13 +51,21 @@ LyonPixel random_lyon_pixel(Rng& rng, const LyonFormats& f) {
   return p;
 }
 
-std::vector<std::int64_t> quantize_lyon_pixel(const LyonPixel& p, const LyonFormats& f) {
+void quantize_lyon_pixel(const LyonPixel& p, const LyonFormats& f, std::span<std::int64_t> out) {
   const auto q = [](double x, fx::Format fmt) {
     return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
   };
-  return {q(p.n0.x, f.vec), q(p.n0.y, f.vec), q(p.n0.z, f.vec), q(p.n1.x, f.vec), q(p.n1.y, f.vec),
-          q(p.n1.z, f.vec), q(p.a, f.a),      q(p.v.x, f.vec),  q(p.v.y, f.vec),  q(p.v.z, f.vec),
-          q(p.l.x, f.vec),  q(p.l.y, f.vec),  q(p.l.z, f.vec),  q(p.shin, f.shin)};
+  const double values[14] = {p.n0.x, p.n0.y, p.n0.z, p.n1.x, p.n1.y, p.n1.z, p.a,
+                             p.v.x,  p.v.y,  p.v.z,  p.l.x,  p.l.y,  p.l.z,  p.shin};
+  for (std::size_t i = 0; i < 14; ++i) {
+    out[i] = q(values[i], i == 6 ? f.a : i == 13 ? f.shin : f.vec);
+  }
+}
+
+std::vector<std::int64_t> quantize_lyon_pixel(const LyonPixel& p, const LyonFormats& f) {
+  std::vector<std::int64_t> raw(14);
+  quantize_lyon_pixel(p, f, raw);
+  return raw;
 }
 
 Stimulus make_lyon_stimulus(const PipelineModel& model) {
@@ -113,8 +121,7 @@ Stimulus make_lyon_stimulus(const PipelineModel& model) {
       bits(rng, in);
       return;
     }
-    const auto p = quantize_lyon_pixel(random_lyon_pixel(rng, f), f);
-    std::copy(p.begin(), p.end(), in.begin());
+    quantize_lyon_pixel(random_lyon_pixel(rng, f), f, in);
   };
   return Stimulus(model, std::move(directed), random);
 }

@@ -35,6 +35,8 @@ struct LyonPixel {
 // model's inputs() order.
 [[nodiscard]] std::vector<std::int64_t> quantize_lyon_pixel(const LyonPixel& p,
                                                             const LyonFormats& f);
+// The same into `out` (14 fields; no allocation: the stimulus makes one per random vector).
+void quantize_lyon_pixel(const LyonPixel& p, const LyonFormats& f, std::span<std::int64_t> out);
 
 // Directed corners and random vectors: half random_lyon_pixel, half arbitrary bit patterns.
 [[nodiscard]] Stimulus make_lyon_stimulus(const PipelineModel& model);
