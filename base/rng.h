@@ -3,7 +3,9 @@
 // (configuration, seed, vector index).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 
 namespace phongsim {
 
@@ -18,16 +20,20 @@ class Rng {
   static Rng from_state(std::uint64_t state) { return Rng(state); }
 
   // splitmix64 (Steele, Lea, Flood 2014).
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
+  std::uint64_t next() { return finalize(state_ += kGamma); }
+
+  // The next out.size() values of next(), each computed on its own (the k-th is a function of
+  // the state plus k steps): no chain of dependent steps.
+  void fill(std::span<std::uint64_t> out) {
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = finalize(state_ + (k + 1) * kGamma);
+    state_ += out.size() * kGamma;
   }
 
   // Uniform in [0, n) for n >= 1 (multiply-shift; the bias is below 2^-64 * n).
-  std::uint64_t below(std::uint64_t n) {
-    return static_cast<std::uint64_t>((static_cast<unsigned __int128>(next()) * n) >> 64);
+  std::uint64_t below(std::uint64_t n) { return scaled(next(), n); }
+  // below(n) from an output of next() (or fill()).
+  static std::uint64_t scaled(std::uint64_t z, std::uint64_t n) {
+    return static_cast<std::uint64_t>((static_cast<unsigned __int128>(z) * n) >> 64);
   }
 
   // Uniform in [0, 1).
@@ -45,6 +51,12 @@ class Rng {
     return r.next();
   }
   explicit Rng(std::uint64_t raw_state) : state_(raw_state) {}
+  static constexpr std::uint64_t kGamma = 0x9e3779b97f4a7c15ULL;
+  static std::uint64_t finalize(std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
 
   std::uint64_t state_;
 };

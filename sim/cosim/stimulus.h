@@ -17,11 +17,6 @@ namespace phongsim {
 // side of zero, and +-1.0 and 1/2 where representable. Sorted, no duplicates.
 [[nodiscard]] std::vector<std::int64_t> corner_values(fx::Format fmt);
 
-// A random raw value of `fmt`: usually uniform over the whole range, sometimes (1 in 8) one of
-// `corners` (corner_values(fmt)), so range ends and exact ones keep showing up in random runs.
-[[nodiscard]] std::int64_t random_raw(Rng& rng, fx::Format fmt,
-                                      std::span<const std::int64_t> corners);
-
 class Stimulus {
  public:
   // Fills random input vector `index` (raw values in the model's inputs() order); a pure function
@@ -31,7 +26,7 @@ class Stimulus {
       std::function<void(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in)>;
 
   // `directed` holds complete input vectors (raw values in the model's inputs() order).
-  // Random vectors come from `random` when given, otherwise field by field from random_raw().
+  // Random vectors come from `random` when given, otherwise from FieldRandom.
   Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
            RandomFn random = {});
 
@@ -58,8 +53,11 @@ class Stimulus {
   GroupFn groups_;
 };
 
-// Field-by-field random values (random_raw with corner bias) for the given formats: the default
-// random stimulus, also available to pipelines that mix it with their own.
+// Field-by-field random raw values: each field usually uniform over its format's whole range,
+// sometimes (1 in 8) one of its corner_values(), so range ends and exact ones keep showing up in
+// random runs. Field i takes the Rng's outputs 2i and 2i + 1 (below(8) == 0 picks a corner; the
+// second picks the corner or the value), whichever it becomes. The default random stimulus, also
+// available to pipelines that mix it with their own. Not thread-safe (scratch): one per thread.
 class FieldRandom {
  public:
   explicit FieldRandom(const std::vector<Field>& fields);
@@ -70,8 +68,14 @@ class FieldRandom {
   }
 
  private:
-  std::vector<fx::Format> formats_;
-  std::vector<std::vector<std::int64_t>> corners_;
+  struct Draw {
+    std::int64_t lo = 0;                           // min_raw()
+    std::uint64_t span = 0;                        // max_raw() - min_raw() + 1 (<= 2^63)
+    std::size_t corners_at = 0, corner_count = 0;  // into corners_
+  };
+  std::vector<Draw> draws_;
+  std::vector<std::int64_t> corners_;
+  mutable std::vector<std::uint64_t> z_;  // the Rng's outputs for one vector
 };
 
 }  // namespace phongsim
