@@ -70,23 +70,12 @@ class PortMap {
   void pack(std::span<const std::int64_t> fields, std::uint32_t* image) const {
     for (const Port& p : in_ports_) {
       if (p.words == 0) {
-        std::uint64_t v = 0;
-        for (const Slice& s : p.slices) {
-          v |= (static_cast<std::uint64_t>(fields[s.field]) & s.mask) << s.lsb;
-        }
+        const std::uint64_t v = narrow_bits(p, fields);
         image[0] = static_cast<std::uint32_t>(v);
         image[1] = static_cast<std::uint32_t>(v >> 32);
         image += 2;
       } else {
-        std::fill(image, image + p.words, 0U);
-        for (const Slice& s : p.slices) {
-          const auto x =
-              static_cast<unsigned __int128>(static_cast<std::uint64_t>(fields[s.field]) & s.mask)
-              << (s.lsb % 32);
-          for (int k = 0; k < 3 && s.lsb / 32 + k < p.words; ++k) {
-            image[s.lsb / 32 + k] |= static_cast<std::uint32_t>(x >> (32 * k));
-          }
-        }
+        wide_bits(p, fields, image);
         image += p.words;
       }
     }
@@ -97,28 +86,22 @@ class PortMap {
       if (p.words != 0) {
         std::copy_n(image, p.words, static_cast<EData*>(p.data));
         image += p.words;
-        continue;
-      }
-      const std::uint64_t v = image[0] | (static_cast<std::uint64_t>(image[1]) << 32);
-      image += 2;
-      switch (p.bytes) {
-        case 1:
-          *static_cast<CData*>(p.data) = static_cast<CData>(v);
-          break;
-        case 2:
-          *static_cast<SData*>(p.data) = static_cast<SData>(v);
-          break;
-        case 4:
-          *static_cast<IData*>(p.data) = static_cast<IData>(v);
-          break;
-        default:
-          *static_cast<QData*>(p.data) = v;
+      } else {
+        store(p, image[0] | (static_cast<std::uint64_t>(image[1]) << 32));
+        image += 2;
       }
     }
   }
-  void write(std::span<const std::int64_t> fields) {
-    pack(fields, scratch_.data());
-    load(scratch_.data());
+  // Drives the input ports from a transaction's fields: pack() and load() in one pass, without
+  // the image between them (the harness does this every time it presents an input).
+  void write(std::span<const std::int64_t> fields) const {
+    for (const Port& p : in_ports_) {
+      if (p.words == 0) {
+        store(p, narrow_bits(p, fields));
+      } else {
+        wide_bits(p, fields, static_cast<EData*>(p.data));
+      }
+    }
   }
 
   void read(std::span<std::int64_t> fields) const {
@@ -152,8 +135,6 @@ class PortMap {
     }
   }
 
-  void finish() { scratch_.assign(image_size_, 0); }
-
  private:
   struct Slice {
     std::size_t field = 0;
@@ -167,6 +148,42 @@ class PortMap {
     int words = 0;
     std::vector<Slice> slices;
   };
+
+  // A port of up to 64 bits: its value from the fields; stored as the port's type.
+  static std::uint64_t narrow_bits(const Port& p, std::span<const std::int64_t> fields) {
+    std::uint64_t v = 0;
+    for (const Slice& s : p.slices) {
+      v |= (static_cast<std::uint64_t>(fields[s.field]) & s.mask) << s.lsb;
+    }
+    return v;
+  }
+  static void store(const Port& p, std::uint64_t v) {
+    switch (p.bytes) {
+      case 1:
+        *static_cast<CData*>(p.data) = static_cast<CData>(v);
+        break;
+      case 2:
+        *static_cast<SData*>(p.data) = static_cast<SData>(v);
+        break;
+      case 4:
+        *static_cast<IData*>(p.data) = static_cast<IData>(v);
+        break;
+      default:
+        *static_cast<QData*>(p.data) = v;
+    }
+  }
+  // A wider port's words (as Verilator stores them) from the fields.
+  static void wide_bits(const Port& p, std::span<const std::int64_t> fields, std::uint32_t* w) {
+    std::fill(w, w + p.words, 0U);
+    for (const Slice& s : p.slices) {
+      const auto x =
+          static_cast<unsigned __int128>(static_cast<std::uint64_t>(fields[s.field]) & s.mask)
+          << (s.lsb % 32);
+      for (int k = 0; k < 3 && s.lsb / 32 + k < p.words; ++k) {
+        w[s.lsb / 32 + k] |= static_cast<std::uint32_t>(x >> (32 * k));
+      }
+    }
+  }
 
   static std::int64_t extend(std::uint64_t bits, const Slice& s) {
     return static_cast<std::int64_t>(((bits & s.mask) ^ s.sign) - s.sign);
@@ -222,7 +239,6 @@ class PortMap {
   std::vector<Port> in_ports_;
   std::vector<Port> out_ports_;
   std::size_t image_size_ = 0;
-  std::vector<std::uint32_t> scratch_;
 };
 
 template <class Top>
@@ -237,7 +253,6 @@ class VerilatedDut final : public RtlDut {
     top_ = std::make_unique<Top>(context_.get(), "top");
     bind(*top_, map_);
     map_.check_complete();
-    map_.finish();
   }
 
   ~VerilatedDut() override {
