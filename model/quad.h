@@ -48,7 +48,9 @@ struct QuadProgram {
 // The walker's arithmetic compiled for one configuration (model/plan.h): wrap-around of the
 // accumulators and DDA quotients as precomputed sign extensions, the output's clamp and
 // requantization as one step; walk() is QuadModel::walk() with those, writing each row's pixels
-// straight into the output.
+// straight into the output, each pixel's accumulators in closed form (the row's forward
+// differences summed, modulo the accumulator's width: the same values, vectorized), on the
+// kernel instruction set (fx::on_kernel_isa).
 class QuadPlan {
  public:
   QuadPlan() = default;

@@ -81,7 +81,7 @@ class ShadeLyonModel final : public PipelineModel {
   ShadeLyonFormats f_;
   QuadModel walker_;
   LyonModel lyon_;
-  // Scratch of eval_batch: the batch's walker pixels, pixels per program, Lyon inputs and
+  // Scratch of eval_batch: a group's walker pixels, pixels per program, Lyon inputs and
   // Lyon outputs.
   std::vector<std::int64_t> walked_;
   std::vector<std::uint32_t> sizes_;
