@@ -538,8 +538,14 @@ std::pair<double, double> pixels_per_clock(const Config& cfg, int length, int sp
 // native engine on each channel's words, and the join (a pixel when all three have one; x = x0 +
 // i, wrapping at 2048; the span done at red's last pixel).
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  std::array<std::vector<std::int64_t>, 3> words, pixels;
-  std::vector<std::int64_t> spans;  // x0, y of each header
+  // Scratch kept between calls (one set per thread), as the model keeps its queues.
+  thread_local std::array<std::vector<std::int64_t>, 3> words, pixels;
+  thread_local std::vector<std::int64_t> spans;  // x0, y of each header
+  for (std::size_t c = 0; c < 3; ++c) {
+    words[c].clear();
+    pixels[c].clear();
+  }
+  spans.clear();
   std::array<std::int64_t, 3> left{};
   for (std::size_t at = 0; at + M::kInputs <= in.size(); at += M::kInputs) {
     const std::int64_t* w = in.data() + at;
