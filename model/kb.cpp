@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <type_traits>
+
 namespace phongsim {
 
 KbFormats KbFormats::from_config(const Config& cfg) {
@@ -18,6 +20,29 @@ KbPlan::KbPlan(const KbFormats& f)
     : wrap_shift_(64 - f.acc.width()),
       out_(f.acc, f.out, f.out_round),
       one_(f.acc.int_bits >= 1 ? std::int64_t{1} << f.acc.frac_bits : f.acc.max_raw()) {}
+
+void KbPlan::run(std::int64_t& f, std::int64_t& d1, std::int64_t d2, std::size_t count,
+                 std::int64_t* out) const {
+  // The forward differences (f += d1, d1 += d2 per pixel, modulo 2^width(acc)) in closed form,
+  // f at pixel k = f + k·d1 + d2·k(k - 1)/2: the same modular sums, but each pixel independent
+  // of the last, so the loop vectorizes (QuadPlan::walk does the same for rows).
+  const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+  const std::uint64_t f0 = u(f), g = u(d1), a = u(d2);
+  fx::on_kernel_isa([&] {
+    // Locals: stores to `out` may alias the plan and the captures as far as GCC knows.
+    const KbPlan plan = *this;
+    const std::size_t n = count;
+    std::int64_t* const o = out;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint64_t i = k;
+      o[2 * k] = plan.output(plan.wrap(f0 + i * g + a * (i * (i - 1) / 2)));
+      o[2 * k + 1] = 0;
+    }
+  });
+  const std::uint64_t n = count;
+  f = wrap(f0 + n * g + a * (n * (n - 1) / 2));
+  d1 = wrap(g + n * a);
+}
 
 KbModel::KbModel(const KbFormats& formats, bool stages)
     : f_(formats), sum_(fx::add_format(f_.acc, f_.acc)), plan_(f_), stages_(stages) {
@@ -66,17 +91,27 @@ void KbModel::steady(const Ops& ops, std::int64_t stop, std::vector<std::int64_t
   const std::size_t at = out.size();
   out.resize(at + 2 * count);
   std::int64_t* o = out.data() + at;
-  std::int64_t f = s_.f, d1 = s_.d1;
-  const std::int64_t d2 = s_.d2;
-  for (std::size_t k = 0; k < count; ++k) {
-    if (trace_ != nullptr) trace_->push_back(f);
-    o[2 * k] = ops.output(f);
-    o[2 * k + 1] = 0;
-    f = ops.wrap_add(f, d1);
-    d1 = ops.wrap_add(d1, d2);
+  bool done = false;
+  if constexpr (std::is_same_v<Ops, KbPlan>) {
+    // The plan's vectorized run for runs long enough to pay for it (the trace needs each f).
+    if (trace_ == nullptr && count >= 16) {
+      ops.run(s_.f, s_.d1, s_.d2, count, o);
+      done = true;
+    }
   }
-  s_.f = f;
-  s_.d1 = d1;
+  if (!done) {
+    std::int64_t f = s_.f, d1 = s_.d1;
+    const std::int64_t d2 = s_.d2;
+    for (std::size_t k = 0; k < count; ++k) {
+      if (trace_ != nullptr) trace_->push_back(f);
+      o[2 * k] = ops.output(f);
+      o[2 * k + 1] = 0;
+      f = ops.wrap_add(f, d1);
+      d1 = ops.wrap_add(d1, d2);
+    }
+    s_.f = f;
+    s_.d1 = d1;
+  }
   if (end == s_.last + 1) {  // the span's last pixel
     o[2 * count - 1] = 1;
     s_.i = s_.last;

@@ -36,12 +36,19 @@ class KbPlan {
   // a + b wrapped to acc: the sum has acc's binary point, so wrapping keeps its low width bits,
   // sign-extended (two shifts; both operands are in acc's range, so the sum fits int64_t).
   [[nodiscard]] std::int64_t wrap_add(std::int64_t a, std::int64_t b) const {
-    return static_cast<std::int64_t>(static_cast<std::uint64_t>(a + b) << wrap_shift_) >>
-           wrap_shift_;
+    return wrap(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
+  }
+  // v modulo 2^width(acc), read signed.
+  [[nodiscard]] std::int64_t wrap(std::uint64_t v) const {
+    return static_cast<std::int64_t>(v << wrap_shift_) >> wrap_shift_;
   }
   [[nodiscard]] std::int64_t output(std::int64_t f) const {
     return out_(std::min(std::max(f, std::int64_t{0}), one_));
   }
+  // `count` pixels of a run without events from accumulators (f, d1, d2): writes each pixel's
+  // (value, last = 0) pair to `out` and leaves f and d1 as the engine's after them.
+  void run(std::int64_t& f, std::int64_t& d1, std::int64_t d2, std::size_t count,
+           std::int64_t* out) const;
 
  private:
   int wrap_shift_ = 0;    // 64 - acc's width

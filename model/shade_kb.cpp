@@ -39,11 +39,6 @@ ShadeKbModel::Route ShadeKbModel::route() const {
   return {false, 1U << first};
 }
 
-std::array<std::int64_t, 6> ShadeKbModel::channel_word(std::span<const std::int64_t> in, int ch) {
-  const auto c = static_cast<std::size_t>(ch);
-  return {in[kN], in[kCount + c], in[kF + c], in[kD1 + c], in[kD2 + c], in[kReload]};
-}
-
 std::size_t ShadeKbModel::eval(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
   // Demux: the word to its channels (and a header's x0, y to the span queue).
   const Route r = route();
@@ -73,19 +68,26 @@ std::size_t ShadeKbModel::eval(std::span<const std::int64_t> in, std::vector<std
   const std::size_t at = out.size();
   out.resize(at + 5 * emitted);
   std::int64_t* o = out.data() + at;
-  for (std::size_t k = 0; k < 2 * emitted; k += 2, o += 5) {
+  // The span in locals (stores to `out` may alias the members as far as the compiler knows).
+  const auto next_span = [this] {
     if (spans_.empty()) throw Error("shade_kb model: a pixel without a span");  // cannot happen
-    const Span& s = spans_.front();
-    o[0] = (s.x + i_) & coord_mask;
-    o[1] = s.y;
+    return spans_.front();
+  };
+  Span span = emitted != 0 ? next_span() : Span{};
+  std::int64_t i = i_;
+  for (std::size_t k = 0; k < 2 * emitted; k += 2, o += 5) {
+    o[0] = (span.x + i) & coord_mask;
+    o[1] = span.y;
     for (std::size_t c = 0; c < kChannels; ++c) o[2 + c] = ch[c][k];
     if (ch[0][k + 1] != 0) {  // the span's last pixel
       spans_.pop_front();
-      i_ = 0;
+      i = 0;
+      if (k + 2 < 2 * emitted) span = next_span();
     } else {
-      i_ = (i_ + 1) & coord_mask;
+      i = (i + 1) & coord_mask;
     }
   }
+  i_ = i;
   // What the join took leaves the queues: all of it, or a prefix once it is long (a channel
   // runs ahead while the others wait for their event words).
   for (std::size_t c = 0; c < kChannels; ++c) {

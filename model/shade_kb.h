@@ -55,7 +55,10 @@ class ShadeKbModel final : public PipelineModel {
   [[nodiscard]] Route route() const;
   // The kb_engine word (n, count, f, d1, d2, reload) channel `ch` sees of shade word `in`.
   [[nodiscard]] static std::array<std::int64_t, 6> channel_word(std::span<const std::int64_t> in,
-                                                                int ch);
+                                                                int ch) {
+    const auto c = static_cast<std::size_t>(ch);
+    return {in[kN], in[kCount + c], in[kF + c], in[kD1 + c], in[kD2 + c], in[kReload]};
+  }
   // Channel `ch`'s engine (stage values and coverpoints trace its accumulator).
   [[nodiscard]] KbModel& engine(int ch) { return engines_[static_cast<std::size_t>(ch)]; }
 

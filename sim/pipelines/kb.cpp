@@ -626,22 +626,23 @@ FrameCycles cycles(const Config&, std::span<const std::int64_t> in, std::span<co
 }
 
 // configs/kb/default.toml's engine by hand: acc S2.32 (35-bit adders, wrapping), out 0.8 rounded
-// half_even from the accumulator clamped to [0, 1]. The control is KbModel's.
+// half_even from the accumulator clamped to [0, 1]. The control is KbModel's; runs of 16 pixels
+// or more without an event in closed form on the kernel instruction set, as the model's plan
+// does them (KbPlan::run), so the two are compared on equal terms.
 std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& out) {
-  const auto wrap = [](std::int64_t v) {
-    return static_cast<std::int64_t>(static_cast<std::uint64_t>(v) << 29) >> 29;
-  };
+  const auto wrap = [](std::uint64_t v) { return static_cast<std::int64_t>(v << 29) >> 29; };
   const auto value = [](std::int64_t f) {
     f = std::clamp<std::int64_t>(f, 0, std::int64_t{1} << 32);
     return std::min<std::int64_t>((f + (1 << 23) - 1 + ((f >> 24) & 1)) >> 24, 255);
   };
+  const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
   bool running = false;
   std::int64_t remaining = 0, i = 0, last = 0, f = 0, d1 = 0, d2 = 0;
   const auto pixel = [&](std::int64_t d1_step, std::int64_t d2_step) {
     out.push_back(value(f));
     out.push_back(i == last ? 1 : 0);
-    f = wrap(f + d1_step);
-    d1 = wrap(d1_step + d2_step);
+    f = wrap(u(f) + u(d1_step));
+    d1 = wrap(u(d1_step) + u(d2_step));
     d2 = d2_step;
     if (i == last) {
       running = false;
@@ -649,40 +650,55 @@ std::size_t native(std::span<const std::int64_t> in, std::vector<std::int64_t>& 
       ++i;
     }
   };
-  const std::size_t before = out.size();
-  for (std::size_t at = 0; at + 6 <= in.size(); at += 6) {
-    const std::int64_t* w = in.data() + at;
-    if (!running && remaining == 0) {
-      running = true;
-      remaining = w[1];
-      i = 0;
-      last = w[0];
-      f = w[2];
-      d1 = w[3];
-      d2 = w[4];
-    } else if (!running) {
-      --remaining;
-    } else {
-      while (running && i < w[0]) pixel(d1, d2);
-      if (running) pixel(w[5] != 0 ? w[3] : d1, w[4]);
-      --remaining;
+  // Pixels i .. stop - 1 (at most to the span's end) with the span's own steps.
+  const auto steady = [&](std::int64_t stop) {
+    const std::int64_t end = std::min(stop, last + 1);
+    if (!running || i >= end) return;
+    const auto count = static_cast<std::size_t>(end - i);
+    if (count < 16) {
+      while (running && i < end) pixel(d1, d2);
+      return;
     }
-    if (running && remaining == 0) {  // the rest of the span
-      const auto count = static_cast<std::size_t>(last - i + 1);
-      const std::size_t base = out.size();
-      out.resize(base + 2 * count);
-      std::int64_t* o = out.data() + base;
-      for (std::size_t k = 0; k < count; ++k) {
-        o[2 * k] = value(f);
-        o[2 * k + 1] = 0;
-        f = wrap(f + d1);
-        d1 = wrap(d1 + d2);
-      }
+    const std::size_t base = out.size();
+    out.resize(base + 2 * count);
+    std::int64_t* const o = out.data() + base;
+    const std::uint64_t f0 = u(f), g = u(d1), a = u(d2);
+    for (std::size_t k = 0; k < count; ++k) {  // f + k·d1 + d2·k(k - 1)/2
+      o[2 * k] = value(wrap(f0 + k * g + a * (k * (k - 1) / 2)));
+      o[2 * k + 1] = 0;
+    }
+    f = wrap(f0 + count * g + a * (count * (count - 1) / 2));
+    d1 = wrap(g + count * a);
+    if (end == last + 1) {
       o[2 * count - 1] = 1;
       i = last;
       running = false;
+    } else {
+      i = end;
     }
-  }
+  };
+  const std::size_t before = out.size();
+  fx::on_kernel_isa([&] {
+    for (std::size_t at = 0; at + 6 <= in.size(); at += 6) {
+      const std::int64_t* w = in.data() + at;
+      if (!running && remaining == 0) {
+        running = true;
+        remaining = w[1];
+        i = 0;
+        last = w[0];
+        f = w[2];
+        d1 = w[3];
+        d2 = w[4];
+      } else if (!running) {
+        --remaining;
+      } else {
+        steady(w[0]);
+        if (running) pixel(w[5] != 0 ? w[3] : d1, w[4]);
+        --remaining;
+      }
+      if (running && remaining == 0) steady(last + 1);  // the rest of the span
+    }
+  });
   return (out.size() - before) / 2;
 }
 
