@@ -11,10 +11,8 @@ namespace phongsim {
 
 class Rng {
  public:
-  Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
-    state_ = seed;
-    state_ = mix(state_ ^ mix(stream + 0x51ed2701f3a5c7b9ULL) ^ mix(~index));
-  }
+  Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t index)
+      : state_(start(seed, stream, index)) {}
 
   // A plain splitmix64 sequence from `state` (the float references' test meshes use it).
   static Rng from_state(std::uint64_t state) { return Rng(state); }
@@ -25,8 +23,17 @@ class Rng {
   // The next out.size() values of next(), each computed on its own (the k-th is a function of
   // the state plus k steps): no chain of dependent steps.
   void fill(std::span<std::uint64_t> out) {
-    for (std::size_t k = 0; k < out.size(); ++k) out[k] = finalize(state_ + (k + 1) * kGamma);
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = output(state_, k);
     state_ += out.size() * kGamma;
+  }
+
+  // The same without an object, for loops over many generators that the compiler vectorizes:
+  // the state Rng(seed, stream, index) starts from, and output k of fill() from a state.
+  static std::uint64_t start(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+    return mix(seed ^ mix(stream + 0x51ed2701f3a5c7b9ULL) ^ mix(~index));
+  }
+  static std::uint64_t output(std::uint64_t state, std::uint64_t k) {
+    return finalize(state + (k + 1) * kGamma);
   }
 
   // Uniform in [0, n) for n >= 1 (multiply-shift; the bias is below 2^-64 * n).
@@ -34,6 +41,14 @@ class Rng {
   // below(n) from an output of next() (or fill()).
   static std::uint64_t scaled(std::uint64_t z, std::uint64_t n) {
     return static_cast<std::uint64_t>((static_cast<unsigned __int128>(z) * n) >> 64);
+  }
+  // scaled() from 32-bit halves instead of a 128-bit product: a loop of it vectorizes.
+  static std::uint64_t scaled_halves(std::uint64_t z, std::uint64_t n) {
+    constexpr std::uint64_t kLow = 0xffffffffU;
+    const std::uint64_t zl = z & kLow, zh = z >> 32, nl = n & kLow, nh = n >> 32;
+    const std::uint64_t ll = zl * nl, lh = zl * nh, hl = zh * nl;
+    const std::uint64_t mid = (ll >> 32) + (lh & kLow) + (hl & kLow);
+    return zh * nh + (lh >> 32) + (hl >> 32) + (mid >> 32);
   }
 
   // Uniform in [0, 1).
@@ -46,10 +61,7 @@ class Rng {
   bool coin() { return (next() >> 63) != 0; }
 
  private:
-  static std::uint64_t mix(std::uint64_t x) {
-    Rng r(x);
-    return r.next();
-  }
+  static std::uint64_t mix(std::uint64_t x) { return finalize(x + kGamma); }
   explicit Rng(std::uint64_t raw_state) : state_(raw_state) {}
   static constexpr std::uint64_t kGamma = 0x9e3779b97f4a7c15ULL;
   static std::uint64_t finalize(std::uint64_t z) {

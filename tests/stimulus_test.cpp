@@ -1,13 +1,18 @@
 // The random stimulus' building blocks: Rng::fill gives next()'s sequence, and FieldRandom gives
 // exactly the values of its definition (field i: below(8) == 0 picks one of the format's
 // corner_values() by a second draw, otherwise the second draw is uniform over the range), so a
-// failing vector still regenerates from (configuration, seed, vector index).
+// failing vector still regenerates from (configuration, seed, vector index); its batch and
+// Stimulus::vectors give what one vector at a time gives.
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <memory>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "base/rng.h"
+#include "model/plan.h"
 #include "sim/cosim/stimulus.h"
 #include "tests/fixed_helpers.h"
 
@@ -28,11 +33,47 @@ TEST(RngTest, FillIsTheSequenceOfNext) {
   }
 }
 
-TEST(FieldRandomTest, ValuesFollowTheDefinition) {
-  const std::vector<fx::Format> formats{S(1, 10), U(1, 10), U(4, 4),  S(0, 7),
-                                        S(62, 0), U(63, 0), U(0, 63), S(1, 30)};
+// Formats from one bit to 63, signed and unsigned: their ranges' spans reach 2^63, which the
+// batch's 32-bit-halves product must scale exactly.
+const std::vector<fx::Format> kFormats{S(1, 10), U(1, 10), U(4, 4),  S(0, 7),
+                                       S(62, 0), U(63, 0), U(0, 63), S(1, 30)};
+
+std::vector<Field> fields_of(const std::vector<fx::Format>& formats) {
   std::vector<Field> fields;
   for (const fx::Format f : formats) fields.push_back({"f", f});
+  return fields;
+}
+
+TEST(RngTest, ScaledHalvesIsScaled) {
+  Rng rng(3, kStimulusStream, 0);
+  std::vector<std::uint64_t> ns{1,
+                                2,
+                                3,
+                                7,
+                                8,
+                                1000,
+                                0xffffffffU,
+                                0x100000000U,
+                                0x100000001U,
+                                ~std::uint64_t{0} >> 1,
+                                std::uint64_t{1} << 63,
+                                ~std::uint64_t{0}};
+  for (int k = 0; k < 1000; ++k) ns.push_back(rng.next() >> rng.below(64));  // every magnitude
+  for (const std::uint64_t n : ns) {
+    for (const std::uint64_t z : {std::uint64_t{0}, std::uint64_t{1}, ~std::uint64_t{0},
+                                  std::uint64_t{0xffffffffU}, std::uint64_t{1} << 32}) {
+      ASSERT_EQ(Rng::scaled_halves(z, n), Rng::scaled(z, n)) << z << " x " << n;
+    }
+    for (int k = 0; k < 100; ++k) {
+      const std::uint64_t z = rng.next();
+      ASSERT_EQ(Rng::scaled_halves(z, n), Rng::scaled(z, n)) << z << " x " << n;
+    }
+  }
+}
+
+TEST(FieldRandomTest, ValuesFollowTheDefinition) {
+  const std::vector<fx::Format>& formats = kFormats;
+  const std::vector<Field> fields = fields_of(formats);
   const FieldRandom random(fields);
   std::vector<std::int64_t> got(fields.size());
   std::uint64_t corners = 0, draws = 0;
@@ -56,6 +97,71 @@ TEST(FieldRandomTest, ValuesFollowTheDefinition) {
   }
   // 1 in 8 from the corners: 480,000 draws put the fraction within 0.003 of 0.125 (> 6 sigma).
   EXPECT_NEAR(static_cast<double>(corners) / static_cast<double>(draws), 0.125, 0.003);
+}
+
+// fill() on every instruction set this CPU runs: the vectors of one call per vector, for counts
+// that end inside a block and start anywhere.
+TEST(FieldRandomTest, FillIsOneVectorAtATime) {
+  const std::vector<Field> fields = fields_of(kFormats);
+  const std::size_t n = fields.size();
+  const FieldRandom random(fields);
+  const fx::Isa chosen = fx::kernel_isa();
+  for (const fx::Isa isa : fx::supported_isas()) {
+    fx::set_kernel_isa(isa);
+    for (const std::uint64_t seed : {1, 7}) {
+      for (const auto [first, count] : {std::pair<std::uint64_t, std::size_t>{0, 0},
+                                        {0, 1},
+                                        {3, 63},
+                                        {100, 64},
+                                        {12345, 65},
+                                        {~std::uint64_t{0} - 2000, 2000}}) {
+        std::vector<std::int64_t> got(count * n), want(n);
+        random.fill(seed, first, count, got);
+        for (std::size_t v = 0; v < count; ++v) {
+          random(seed, first + v, want);
+          for (std::size_t i = 0; i < n; ++i) {
+            ASSERT_EQ(got[v * n + i], want[i]) << fx::isa_name(isa) << " seed " << seed
+                                               << " vector " << first + v << " field " << i;
+          }
+        }
+      }
+    }
+  }
+  fx::set_kernel_isa(chosen);
+}
+
+// Stimulus::vectors across the end of the directed vectors, with FieldRandom and with a
+// pipeline's own random function.
+TEST(StimulusTest, VectorsAreOneVectorAtATime) {
+  class Model final : public PipelineModel {
+   public:
+    explicit Model(std::vector<Field> in) { inputs_ = std::move(in); }
+    std::size_t eval(std::span<const std::int64_t>, std::vector<std::int64_t>&) override {
+      return 0;
+    }
+    [[nodiscard]] std::unique_ptr<PipelineModel> clone() const override {
+      return std::make_unique<Model>(*this);
+    }
+  };
+  const Model model(fields_of({S(1, 10), U(0, 12), S(20, 3)}));
+  const std::vector<std::vector<std::int64_t>> directed{{1, 2, 3}, {-4, 5, 6}, {7, 8, -9}};
+  const Stimulus::RandomFn own = [](std::uint64_t seed, std::uint64_t index,
+                                    std::span<std::int64_t> in) {
+    for (std::size_t i = 0; i < in.size(); ++i) in[i] = static_cast<std::int64_t>(seed + index + i);
+  };
+  for (const Stimulus& stimulus : {Stimulus(model, directed), Stimulus(model, directed, own)}) {
+    for (const auto [first, count] :
+         {std::pair<std::uint64_t, std::size_t>{0, 2}, {1, 100}, {3, 70}, {50, 0}}) {
+      std::vector<std::int64_t> got(3 * count), want(3);
+      stimulus.vectors(5, first, count, got);
+      for (std::size_t v = 0; v < count; ++v) {
+        stimulus.vector(5, first + v, want);
+        for (std::size_t i = 0; i < 3; ++i) {
+          ASSERT_EQ(got[3 * v + i], want[i]) << "vector " << first + v << " field " << i;
+        }
+      }
+    }
+  }
 }
 
 }  // namespace

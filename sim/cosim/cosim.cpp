@@ -69,9 +69,7 @@ class Scoreboard {
   InputBatch next(std::uint64_t pos) {
     const std::uint64_t n = std::min(kBatch, count_ - std::min(count_, pos));
     inputs_.resize(n * n_in_);
-    for (std::uint64_t i = 0; i < n; ++i) {
-      stimulus_.vector(seed_, first_ + pos + i, std::span(inputs_).subspan(i * n_in_, n_in_));
-    }
+    stimulus_.vectors(seed_, first_ + pos, n, inputs_);
     if (contract_.defined()) {
       for (std::uint64_t i = 0; i < n; ++i) {
         clause_.push_back(static_cast<std::int16_t>(

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "model/plan.h"
+
 namespace phongsim {
 
 std::vector<std::int64_t> corner_values(fx::Format fmt) {
@@ -36,24 +38,73 @@ void FieldRandom::operator()(Rng& rng, std::span<std::int64_t> in) const {
   for (std::size_t i = 0; i < draws_.size(); ++i) {
     const Draw& d = draws_[i];
     const std::uint64_t z = z_[2 * i + 1];
-    const std::int64_t corner = corners_[d.corners_at + Rng::scaled(z, d.corner_count)];
+    const std::int64_t corner = corners_[d.corners_at + Rng::Rng::scaled_halves(z, d.corner_count)];
     const std::int64_t uniform = d.lo + static_cast<std::int64_t>(Rng::scaled(z, d.span));
     in[i] = Rng::scaled(z_[2 * i], 8) == 0 ? corner : uniform;
   }
 }
 
+// operator() for a block of vectors field by field, each loop over the block's generators.
+void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t count,
+                       std::span<std::int64_t> out) const {
+  fx::on_kernel_isa([&] {
+    constexpr std::size_t kBlock = 64;
+    alignas(64) std::uint64_t state[kBlock];
+    alignas(64) std::int64_t value[kBlock];
+    // Locals: stores to `out` may alias the members as far as the compiler knows.
+    const std::size_t n = draws_.size();
+    const Draw* const draws = draws_.data();
+    const std::int64_t* const corners = corners_.data();
+    std::int64_t* const o = out.data();
+    for (std::size_t b = 0; b < count; b += kBlock) {
+      const std::size_t m = std::min(kBlock, count - b);
+      for (std::size_t v = 0; v < m; ++v) {
+        state[v] = Rng::start(seed, kStimulusStream, first + b + v);
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        const Draw d = draws[i];
+        for (std::size_t v = 0; v < m; ++v) {
+          const std::uint64_t pick = Rng::output(state[v], 2 * i);
+          const std::uint64_t z = Rng::output(state[v], 2 * i + 1);
+          const std::int64_t corner = corners[d.corners_at + Rng::scaled_halves(z, d.corner_count)];
+          const std::int64_t uniform =
+              d.lo + static_cast<std::int64_t>(Rng::scaled_halves(z, d.span));
+          value[v] = pick >> 61 == 0 ? corner : uniform;  // scaled(pick, 8) == 0
+        }
+        for (std::size_t v = 0; v < m; ++v) o[(b + v) * n + i] = value[v];
+      }
+    }
+  });
+}
+
 Stimulus::Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
                    RandomFn random)
     : directed_(std::move(directed)), random_(std::move(random)) {
-  if (!random_) random_ = FieldRandom(model.inputs());
+  if (!random_) fields_.emplace(model.inputs());
 }
 
 void Stimulus::vector(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const {
   if (index < directed_.size()) {
     std::copy(directed_[index].begin(), directed_[index].end(), in.begin());
+  } else if (fields_) {
+    (*fields_)(seed, index, in);
+  } else {
+    random_(seed, index, in);
+  }
+}
+
+void Stimulus::vectors(std::uint64_t seed, std::uint64_t first, std::size_t count,
+                       std::span<std::int64_t> in) const {
+  const std::size_t n_in = count == 0 ? 0 : in.size() / count;
+  std::size_t k = 0;
+  for (; k < count && first + k < directed_.size(); ++k) {  // directed, then random
+    vector(seed, first + k, in.subspan(k * n_in, n_in));
+  }
+  if (fields_) {
+    fields_->fill(seed, first + k, count - k, in.subspan(k * n_in));
     return;
   }
-  random_(seed, index, in);
+  for (; k < count; ++k) random_(seed, first + k, in.subspan(k * n_in, n_in));
 }
 
 }  // namespace phongsim

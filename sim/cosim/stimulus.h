@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -16,6 +17,36 @@ namespace phongsim {
 // Values worth hitting in any format: both range ends and their neighbours, zero, one LSB either
 // side of zero, and +-1.0 and 1/2 where representable. Sorted, no duplicates.
 [[nodiscard]] std::vector<std::int64_t> corner_values(fx::Format fmt);
+
+// Field-by-field random raw values: each field usually uniform over its format's whole range,
+// sometimes (1 in 8) one of its corner_values(), so range ends and exact ones keep showing up in
+// random runs. Field i takes the Rng's outputs 2i and 2i + 1 (below(8) == 0 picks a corner; the
+// second picks the corner or the value), whichever it becomes. The default random stimulus, also
+// available to pipelines that mix it with their own. Not thread-safe (scratch): one per thread.
+class FieldRandom {
+ public:
+  explicit FieldRandom(const std::vector<Field>& fields);
+  void operator()(Rng& rng, std::span<std::int64_t> in) const;
+  void operator()(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const {
+    Rng rng(seed, kStimulusStream, index);
+    (*this)(rng, in);
+  }
+  // Vectors first .. first + count - 1 of `seed` back to back in `out`: the values of `count`
+  // calls of the above, made a block of vectors at a time so that the loops over a block
+  // vectorize (fx::on_kernel_isa). Thread-safe (no scratch).
+  void fill(std::uint64_t seed, std::uint64_t first, std::size_t count,
+            std::span<std::int64_t> out) const;
+
+ private:
+  struct Draw {
+    std::int64_t lo = 0;                           // min_raw()
+    std::uint64_t span = 0;                        // max_raw() - min_raw() + 1 (<= 2^63)
+    std::size_t corners_at = 0, corner_count = 0;  // into corners_
+  };
+  std::vector<Draw> draws_;
+  std::vector<std::int64_t> corners_;
+  mutable std::vector<std::uint64_t> z_;  // the Rng's outputs for one vector
+};
 
 class Stimulus {
  public:
@@ -35,6 +66,10 @@ class Stimulus {
   // Vector `index`: directed_[index] below directed_count(), otherwise random from (seed, index).
   // Not thread-safe (a RandomFn may cache): a thread uses its own copy.
   void vector(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const;
+  // Vectors first .. first + count - 1 back to back in `in`: what `count` vector() calls give.
+  // The default random stimulus (FieldRandom) makes them a block at a time.
+  void vectors(std::uint64_t seed, std::uint64_t first, std::size_t count,
+               std::span<std::int64_t> in) const;
 
   // Where a co-simulation may be split (sim/cosim/cosim.h: shards). For vectors that depend on
   // the ones before them (a span program's words), `starts` gives the first index >= i at which
@@ -50,32 +85,8 @@ class Stimulus {
  private:
   std::vector<std::vector<std::int64_t>> directed_;
   RandomFn random_;
+  std::optional<FieldRandom> fields_;  // the random stimulus when no RandomFn is given
   GroupFn groups_;
-};
-
-// Field-by-field random raw values: each field usually uniform over its format's whole range,
-// sometimes (1 in 8) one of its corner_values(), so range ends and exact ones keep showing up in
-// random runs. Field i takes the Rng's outputs 2i and 2i + 1 (below(8) == 0 picks a corner; the
-// second picks the corner or the value), whichever it becomes. The default random stimulus, also
-// available to pipelines that mix it with their own. Not thread-safe (scratch): one per thread.
-class FieldRandom {
- public:
-  explicit FieldRandom(const std::vector<Field>& fields);
-  void operator()(Rng& rng, std::span<std::int64_t> in) const;
-  void operator()(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in) const {
-    Rng rng(seed, kStimulusStream, index);
-    (*this)(rng, in);
-  }
-
- private:
-  struct Draw {
-    std::int64_t lo = 0;                           // min_raw()
-    std::uint64_t span = 0;                        // max_raw() - min_raw() + 1 (<= 2^63)
-    std::size_t corners_at = 0, corner_count = 0;  // into corners_
-  };
-  std::vector<Draw> draws_;
-  std::vector<std::int64_t> corners_;
-  mutable std::vector<std::uint64_t> z_;  // the Rng's outputs for one vector
 };
 
 }  // namespace phongsim

@@ -59,17 +59,18 @@ InputContract contract(const PipelineModel&, const Config& cfg) {
   return InputContract({"a in [0, 1]", f.p.is_signed ? "p0, p1 in [-1, 1]" : "p0, p1 in [0, 1]",
                         "p in the output range"},
                        [=](std::span<const std::int64_t> in) {
-                         if (in[6] < 0 || in[6] > one_a) return 0;
-                         for (int c = 0; c < 6; ++c) {
-                           if (in[c] < p_lo || in[c] > one_p) return 1;
-                         }
+                         // Every clause without a branch (random vectors break them at random,
+                         // so branches would mispredict); the first one broken is returned.
+                         const bool a_out = (in[6] < 0) | (in[6] > one_a);
+                         bool p_out = false, range_out = false;
+                         for (int c = 0; c < 6; ++c) p_out |= (in[c] < p_lo) | (in[c] > one_p);
                          for (int c = 0; c < 3; ++c) {
                            const double p =
                                static_cast<double>(in[c]) * static_cast<double>(one_a) +
                                static_cast<double>(in[6]) * static_cast<double>(in[3 + c] - in[c]);
-                           if (p < out_lo || p > out_hi) return 2;
+                           range_out |= (p < out_lo) | (p > out_hi);
                          }
-                         return InputContract::kIn;
+                         return a_out ? 0 : p_out ? 1 : range_out ? 2 : InputContract::kIn;
                        });
 }
 
