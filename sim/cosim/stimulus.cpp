@@ -38,7 +38,7 @@ void FieldRandom::operator()(Rng& rng, std::span<std::int64_t> in) const {
   for (std::size_t i = 0; i < draws_.size(); ++i) {
     const Draw& d = draws_[i];
     const std::uint64_t z = z_[2 * i + 1];
-    const std::int64_t corner = corners_[d.corners_at + Rng::Rng::scaled_halves(z, d.corner_count)];
+    const std::int64_t corner = corners_[d.corners_at + Rng::scaled(z, d.corner_count)];
     const std::int64_t uniform = d.lo + static_cast<std::int64_t>(Rng::scaled(z, d.span));
     in[i] = Rng::scaled(z_[2 * i], 8) == 0 ? corner : uniform;
   }
