@@ -3,8 +3,8 @@
 // (the model's headroom), the Verilated RTL through the harness (no checking), the same top in a
 // bare Verilator loop (the harness's headroom), and the full co-simulation; in vectors and outputs
 // per second, with their ratios; and the same RTL in Icarus Verilog through the same harness, on
-// fewer vectors (Icarus is slow), for the Verilator/Icarus ratio. A benchmark prints numbers; no
-// test asserts a timing.
+// fewer vectors (Icarus is slow), for the Verilator/Icarus ratio. Each part but Icarus is timed
+// in three rounds, the fastest kept. A benchmark prints numbers; no test asserts a timing.
 #pragma once
 
 #include <cstdint>
@@ -33,7 +33,7 @@ using NativeKernel =
 
 struct BenchReport {
   std::uint64_t vectors = 0;
-  BenchRate stimulus;               // Stimulus::vector and InputContract::check, vectors only
+  BenchRate stimulus;               // Stimulus::vectors and InputContract::check, vectors only
   BenchRate model;                  // PipelineModel::eval_batch
   std::optional<BenchRate> native;  // when a native kernel applies to the configuration
   BenchRate rtl;                    // the Verilated RTL through the harness, outputs discarded

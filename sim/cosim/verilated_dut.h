@@ -256,11 +256,13 @@ class VerilatedDut final : public RtlDut {
   }
 
   ~VerilatedDut() override {
+    own_thread_context();
     close_trace();
     top_->final();
   }
 
   void reset() override {
+    own_thread_context();
     top_->clk_i = 0;
     top_->in_valid_i = 0;
     top_->out_ready_i = 0;
@@ -312,7 +314,10 @@ class VerilatedDut final : public RtlDut {
   }
 
   // The loop instantiated on this class: every per-cycle call above is direct and inlined.
-  void run(CycleBatch& batch, CycleState& state) override { run_cycles(*this, batch, state); }
+  void run(CycleBatch& batch, CycleState& state) override {
+    own_thread_context();
+    run_cycles(*this, batch, state);
+  }
 
   void bare_load(std::span<const std::int64_t> vectors, std::size_t input_fields) override {
     const std::size_t n_in = input_fields;
@@ -324,7 +329,7 @@ class VerilatedDut final : public RtlDut {
   }
 
   BareStats bare_run() override {
-    reset();
+    reset();  // and the thread's context
     BareStats s;
     const std::size_t n = bare_count_;
     const std::size_t size = map_.image_size();
@@ -351,6 +356,12 @@ class VerilatedDut final : public RtlDut {
   }
 
  private:
+  // Verilator reports $error and $finish to, and tears a model's scopes down through, the
+  // thread's current context: the last one constructed on the thread, which may belong to
+  // another DUT, or to one already destroyed (a hang in the teardown, an assertion missed). So
+  // each entry point makes it this DUT's.
+  void own_thread_context() { Verilated::threadContextp(context_.get()); }
+
   void edge() {
     top_->clk_i = 1;
     top_->eval();
