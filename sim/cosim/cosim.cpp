@@ -93,8 +93,28 @@ class Scoreboard {
                     std::span<const std::uint64_t> cycles, std::string& kind, std::string& report,
                     CosimFailure& detail) {
     accept_.insert(accept_.end(), accepted.begin(), accepted.end());
-    for (std::size_t j = 0; j < cycles.size(); ++j) {
-      if (!check_one(outputs.subspan(j * n_out_, n_out_), cycles[j], kind, report, detail)) {
+    for (std::size_t j = 0; j < cycles.size();) {
+      // The outputs from j on that the oldest vector still owes, compared in one pass against
+      // its expected outputs (contiguous in both); a difference, or an output no vector owes,
+      // goes to check_one one output at a time, which reports it.
+      drop_finished(cycles[j]);
+      if (front_owes(cycles[j])) {
+        const std::size_t m = std::min<std::uint64_t>(owed(front_) - seen_, cycles.size() - j);
+        if (same(outputs.data() + j * n_out_, expected(front_, seen_), m * n_out_)) {
+          if (seen_ == 0) latency(cycles[j] - accept_[front_ - base_]);
+          seen_ += m;
+          checked_ += m;
+          j += m;
+          continue;
+        }
+      }
+      // The output before this one, for the failure reports (the batch's, else the last batch's).
+      const std::int64_t* prev = j > 0           ? outputs.data() + (j - 1) * n_out_
+                                 : last_.empty() ? nullptr
+                                                 : last_.data();
+      if (check_one(outputs.subspan(j * n_out_, n_out_), prev, cycles[j], kind, report, detail)) {
+        ++j;
+      } else {
         // The run stops in that cycle: it has accepted the inputs up to it (as the harness
         // counts them).
         if (contract_.defined()) {
@@ -105,6 +125,10 @@ class Scoreboard {
       }
     }
     if (contract_.defined()) tally(accepted.size());
+    if (!cycles.empty()) {
+      const auto last = outputs.subspan((cycles.size() - 1) * n_out_, n_out_);
+      last_.assign(last.begin(), last.end());
+    }
     compact();
     return cycles.size();
   }
@@ -143,6 +167,10 @@ class Scoreboard {
   [[nodiscard]] const std::int64_t* expected(std::uint64_t pos, std::uint64_t k) const {
     return expected_.data() + (offset_[pos - base_] + k) * n_out_;
   }
+  // Whether the oldest vector still owes an output, accepted before `cycle`.
+  [[nodiscard]] bool front_owes(std::uint64_t cycle) const {
+    return front_ < accepted() && accept_[front_ - base_] < cycle && seen_ < owed(front_);
+  }
   // Vectors accepted before `cycle` whose outputs are all seen leave the front.
   void drop_finished(std::uint64_t cycle) {
     while (front_ < accepted() && accept_[front_ - base_] < cycle && seen_ == owed(front_)) {
@@ -151,9 +179,10 @@ class Scoreboard {
     }
   }
 
-  // Compares one RTL output; on a failure fills kind/report/detail and returns false.
-  bool check_one(std::span<const std::int64_t> got, std::uint64_t cycle, std::string& kind,
-                 std::string& report, CosimFailure& detail) {
+  // Compares one RTL output (`prev`: the one before it, or null); on a failure fills
+  // kind/report/detail and returns false.
+  bool check_one(std::span<const std::int64_t> got, const std::int64_t* prev, std::uint64_t cycle,
+                 std::string& kind, std::string& report, CosimFailure& detail) {
     const auto& outs = model_.outputs();
     const std::size_t n = outs.size();
     drop_finished(cycle);
@@ -171,7 +200,7 @@ class Scoreboard {
       for (std::size_t i = 0; i < n; ++i) {
         report += fmt::format("    {}  {}\n", field_head(outs[i]), value_text(outs[i], got[i]));
       }
-      if (last_.size() == n && std::equal(last_.begin(), last_.end(), got.begin())) {
+      if (prev != nullptr && std::equal(got.begin(), got.end(), prev)) {
         report += "  it repeats the previous output: duplicated\n";
       }
       return false;
@@ -180,7 +209,7 @@ class Scoreboard {
     if (!std::equal(got.begin(), got.end(), want)) {
       kind = "mismatch";
       report = fmt::format("MISMATCH at cycle {}, vector {} (output {} of {} for it){}\n", cycle,
-                           index(front_), seen_ + 1, owed(front_), hint(got, cycle));
+                           index(front_), seen_ + 1, owed(front_), hint(got, prev, cycle));
       report += "  inputs:\n";
       const auto& ins = model_.inputs();
       std::vector<std::int64_t> in(ins.size());
@@ -202,22 +231,31 @@ class Scoreboard {
       }
       return false;
     }
-    if (seen_ == 0) {
-      const std::uint64_t latency = cycle - accept_[front_ - base_];
-      latency_min_ = std::min(latency_min_, latency);
-      latency_max_ = std::max(latency_max_, latency);
-    }
-    last_.assign(got.begin(), got.end());
+    if (seen_ == 0) latency(cycle - accept_[front_ - base_]);
     ++seen_;
     ++checked_;
     return true;
   }
 
+  // a[0..n) == b[0..n), without a branch per value or a library call (this runs per output).
+  static bool same(const std::int64_t* a, const std::int64_t* b, std::size_t n) {
+    std::uint64_t differ = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      differ |= static_cast<std::uint64_t>(a[i]) ^ static_cast<std::uint64_t>(b[i]);
+    }
+    return differ == 0;
+  }
+
+  void latency(std::uint64_t cycles) {
+    latency_min_ = std::min(latency_min_, cycles);
+    latency_max_ = std::max(latency_max_, cycles);
+  }
+
   // Why an output might differ: it belongs to a later vector in flight (reordered/dropped) or
   // repeats the previous one (duplicated).
-  std::string hint(std::span<const std::int64_t> got, std::uint64_t cycle) const {
-    const std::size_t n = n_out_;
-    if (last_.size() == n && std::equal(last_.begin(), last_.end(), got.begin())) {
+  std::string hint(std::span<const std::int64_t> got, const std::int64_t* prev,
+                   std::uint64_t cycle) const {
+    if (prev != nullptr && std::equal(got.begin(), got.end(), prev)) {
       return "; it repeats the previous output: duplicated?";
     }
     for (std::uint64_t p = front_; p < accepted() && accept_[p - base_] < cycle; ++p) {
@@ -277,9 +315,9 @@ class Scoreboard {
   std::vector<std::uint64_t> accept_;   // acceptance cycle per accepted vector from base_
   std::uint64_t base_ = 0;
   std::uint64_t base_output_ = 0;
-  std::uint64_t front_ = 0;  // the vector whose outputs are due next
-  std::uint64_t seen_ = 0;   // of its outputs
-  std::vector<std::int64_t> last_;
+  std::uint64_t front_ = 0;         // the vector whose outputs are due next
+  std::uint64_t seen_ = 0;          // of its outputs
+  std::vector<std::int64_t> last_;  // the last output of the last batch checked
   std::uint64_t checked_ = 0;
   std::uint64_t latency_min_ = std::numeric_limits<std::uint64_t>::max();
   std::uint64_t latency_max_ = 0;
