@@ -51,6 +51,11 @@ class Rng {
     return zh * nh + (lh >> 32) + (hl >> 32) + (mid >> 32);
   }
 
+  // scaled() for n < 2^32: two 32 x 32-bit products (one vector instruction each).
+  static std::uint64_t scaled_narrow(std::uint64_t z, std::uint64_t n) {
+    return ((z >> 32) * n + (((z & 0xffffffffU) * n) >> 32)) >> 32;
+  }
+
   // Uniform in [0, 1).
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 

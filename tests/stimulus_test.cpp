@@ -63,10 +63,16 @@ TEST(RngTest, ScaledHalvesIsScaled) {
     for (const std::uint64_t z : {std::uint64_t{0}, std::uint64_t{1}, ~std::uint64_t{0},
                                   std::uint64_t{0xffffffffU}, std::uint64_t{1} << 32}) {
       ASSERT_EQ(Rng::scaled_halves(z, n), Rng::scaled(z, n)) << z << " x " << n;
+      if (n < std::uint64_t{1} << 32) {
+        ASSERT_EQ(Rng::scaled_narrow(z, n), Rng::scaled(z, n)) << z << " x " << n;
+      }
     }
     for (int k = 0; k < 100; ++k) {
       const std::uint64_t z = rng.next();
       ASSERT_EQ(Rng::scaled_halves(z, n), Rng::scaled(z, n)) << z << " x " << n;
+      if (n < std::uint64_t{1} << 32) {
+        ASSERT_EQ(Rng::scaled_narrow(z, n), Rng::scaled(z, n)) << z << " x " << n;
+      }
     }
   }
 }

@@ -25,16 +25,23 @@ class Stalls {
 
   void next_block(CycleBatch& b) {
     b.stall_base += b.stall_count;
-    for (std::size_t i = 0; i < kStallBlock; ++i) {
-      source_bits_[i] = source_.active(b.stall_base + i, source_rng_) ? 1 : 0;
-      sink_bits_[i] = sink_.active(b.stall_base + i, sink_rng_) ? 1 : 0;
-    }
+    decide(source_, source_rng_, b.stall_base, source_bits_);
+    decide(sink_, sink_rng_, b.stall_base, sink_bits_);
     b.source = source_bits_.data();
     b.sink = sink_bits_.data();
     b.stall_count = kStallBlock;
   }
 
  private:
+  static void decide(const StallPattern& p, Rng& rng, std::uint64_t base,
+                     std::vector<std::uint8_t>& bits) {
+    if (p.never_stalls()) {  // active() every cycle, no random numbers drawn
+      std::fill(bits.begin(), bits.end(), 1);
+      return;
+    }
+    for (std::size_t i = 0; i < bits.size(); ++i) bits[i] = p.active(base + i, rng) ? 1 : 0;
+  }
+
   const StallPattern& source_;
   const StallPattern& sink_;
   Rng source_rng_;

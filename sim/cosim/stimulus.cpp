@@ -49,6 +49,7 @@ void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t coun
                        std::span<std::int64_t> out) const {
   fx::on_kernel_isa([&] {
     constexpr std::size_t kBlock = 64;
+    constexpr std::uint64_t kNarrow = std::uint64_t{1} << 32;
     alignas(64) std::uint64_t state[kBlock];
     alignas(64) std::int64_t value[kBlock];
     // Locals: stores to `out` may alias the members as far as the compiler knows.
@@ -63,13 +64,21 @@ void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t coun
       }
       for (std::size_t i = 0; i < n; ++i) {
         const Draw d = draws[i];
-        for (std::size_t v = 0; v < m; ++v) {
-          const std::uint64_t pick = Rng::output(state[v], 2 * i);
-          const std::uint64_t z = Rng::output(state[v], 2 * i + 1);
-          const std::int64_t corner = corners[d.corners_at + Rng::scaled_halves(z, d.corner_count)];
-          const std::int64_t uniform =
-              d.lo + static_cast<std::int64_t>(Rng::scaled_halves(z, d.span));
-          value[v] = pick >> 61 == 0 ? corner : uniform;  // scaled(pick, 8) == 0
+        // The loop for a field's span: fields up to 32 bits wide scale with half the products.
+        const auto draw = [&](auto scale) {
+          for (std::size_t v = 0; v < m; ++v) {
+            const std::uint64_t pick = Rng::output(state[v], 2 * i);
+            const std::uint64_t z = Rng::output(state[v], 2 * i + 1);
+            const std::int64_t corner =
+                corners[d.corners_at + Rng::scaled_narrow(z, d.corner_count)];
+            const std::int64_t uniform = d.lo + static_cast<std::int64_t>(scale(z, d.span));
+            value[v] = pick >> 61 == 0 ? corner : uniform;  // scaled(pick, 8) == 0
+          }
+        };
+        if (d.span < kNarrow) {
+          draw(Rng::scaled_narrow);
+        } else {
+          draw(Rng::scaled_halves);
         }
         for (std::size_t v = 0; v < m; ++v) o[(b + v) * n + i] = value[v];
       }
