@@ -64,7 +64,7 @@ void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t coun
       }
       for (std::size_t i = 0; i < n; ++i) {
         const Draw d = draws[i];
-        // The loop for a field's span: fields up to 32 bits wide scale with half the products.
+        // The loop for a field's span: fields narrower than 32 bits scale with half the products.
         const auto draw = [&](auto scale) {
           for (std::size_t v = 0; v < m; ++v) {
             const std::uint64_t pick = Rng::output(state[v], 2 * i);
