@@ -115,6 +115,14 @@ EOT
         fail "bench $p on baseline: no native check: $(cat "$tmp/out")"
       grep -q '"isa": "baseline"' "$tmp/$p.json" || fail "bench $p: not on baseline: $(cat "$tmp/$p.json")"
     done
+    # RTL that fails its co-simulation is refused, not timed: one line, exit 2, no JSON.
+    ex="$src/examples/your-rtl"
+    status=0
+    "$phongsim" bench lirp --rtl "$ex/my_lirp.sv" "$ex/my_lirp_wrong.sv" --top my_lirp_wrong \
+      --vectors 2000 --no-icarus --json "$tmp/wrong.json" >"$tmp/out" 2>"$tmp/err" || status=$?
+    [ "$status" = 2 ] && [ "$(wc -l <"$tmp/err")" = 1 ] && [ ! -e "$tmp/wrong.json" ] &&
+      grep -q "bench: the RTL fails its co-simulation (mismatch)" "$tmp/err" ||
+      fail "bench of a wrong LIRP: status $status: $(cat "$tmp/err")"
     # An instruction set that does not exist is refused up front, in one line.
     status=0
     PHONGSIM_ISA=avx3 "$phongsim" bench lirp --vectors 10 >"$tmp/out" 2>"$tmp/err" || status=$?

@@ -143,19 +143,34 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
     h = stream_vectors(*dut, n_in, model.outputs().size(), inputs,
                        [](std::span<const std::int64_t>) {});
     fastest(rtl_s, seconds_since(start));
+    // A rate is only of a run that did the work: RTL that stops, or fails its co-simulation, is
+    // refused rather than timed (phongsim cosim says why).
+    if (h.reason != StopReason::finished || h.inputs != vectors) {
+      throw Error(fmt::format("bench: the RTL run stopped after {} of {} vectors: {}", h.inputs,
+                              vectors, h.message));
+    }
     start = std::chrono::steady_clock::now();
     b = bare->bare_run();
     fastest(bare_s, seconds_since(start));
 
+    const auto passed = [](const CosimReport& c) {
+      if (!c.passed) {
+        throw Error(fmt::format(
+            "bench: the RTL fails its co-simulation ({}); phongsim cosim shows the first failure",
+            c.failure_kind));
+      }
+    };
     start = std::chrono::steady_clock::now();
     const CosimReport c = run_cosim(vectors, 1);
     fastest(cosim_s, seconds_since(start));
+    passed(c);
     cosim_vectors = c.vectors;
     cosim_outputs = c.outputs;
     if (jobs > 1) {
       start = std::chrono::steady_clock::now();
-      (void)run_cosim(vectors, jobs);
+      const CosimReport cj = run_cosim(vectors, jobs);
       fastest(jobs_s, seconds_since(start));
+      passed(cj);
     }
   }
   r.stimulus = rate(vectors, 0, stimulus_s);
