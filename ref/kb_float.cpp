@@ -22,15 +22,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kHalfPi = std::numbers::pi / 2;
 
-// ---- f(θ) ----
-
-// The middle-section value (|θ| - b)²/(b(b - a)), written as a product of two ratios so
-// that neither factor over- or underflows.
-double middle(double abs_theta, QuadParams p) {
-  const double d = p.b - abs_theta;
-  return (d / p.b) * (d / (p.b - p.a));
-}
-
 // ---- the target c(θ) and the integrals over [0, π] ----
 
 // c(θ) = cos^n θ up to π/2, 0 beyond (the renderer clamps back-facing light to zero).
@@ -253,18 +244,8 @@ double wrap(double x) {
 
 // ---- f(θ) ----
 
-void check_params(QuadParams p) {
-  if (!(std::isfinite(p.a) && std::isfinite(p.b) && p.a > 0 && p.b > p.a)) {
-    throw Error(fmt::format("Kuijk-Blake parameters a = {}, b = {} need 0 < a < b", p.a, p.b));
-  }
-}
-
-double quad(double theta, QuadParams p) {
-  check_params(p);
-  const double x = std::abs(theta);
-  if (x >= p.b) return 0;
-  if (x > p.a) return middle(x, p);
-  return 1 - (x / p.a) * (x / p.b);
+void detail::bad_params(QuadParams p) {
+  throw Error(fmt::format("Kuijk-Blake parameters a = {}, b = {} need 0 < a < b", p.a, p.b));
 }
 
 double quad_slope(double theta, QuadParams p) {
@@ -281,16 +262,7 @@ double quad_slope(double theta, QuadParams p) {
   return theta < 0 ? -slope : slope;
 }
 
-int section_of(double theta, QuadParams p) {
-  check_params(p);
-  if (std::isnan(theta)) throw Error("section_of: θ is NaN");
-  // Same tests, in the same order, as quad(): |θ| >= b, then |θ| > a.
-  const double x = std::abs(theta);
-  const int side = theta < 0 ? -1 : 1;
-  if (x >= p.b) return 2 * side;
-  if (x > p.a) return side;
-  return 0;
-}
+void detail::nan_theta() { throw Error("section_of: θ is NaN"); }
 
 Section section_poly(int section, QuadParams p) {
   check_params(p);

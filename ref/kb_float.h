@@ -22,13 +22,28 @@ struct QuadParams {
   double b = 0;
 };
 
-// Throws Error unless p is valid. Every function taking QuadParams checks them.
-void check_params(QuadParams p);
+namespace detail {
+[[noreturn]] void bad_params(QuadParams p);  // throws Error
+[[noreturn]] void nan_theta();               // throws Error
+}  // namespace detail
+
+// Throws Error unless p is valid. Every function taking QuadParams checks them. (This, quad()
+// and section_of() are inline: a span's setup calls them per pixel and term.)
+inline void check_params(QuadParams p) {
+  if (!(std::isfinite(p.a) && std::isfinite(p.b) && p.a > 0 && p.b > p.a)) detail::bad_params(p);
+}
 
 // f(θ) (section 2): 1 - θ²/(ab) for |θ| <= a; (|θ| - b)²/(b(b - a)) for a < |θ| < b; 0 for
 // |θ| >= b. Even; value and slope continuous at ±a (value (b - a)/b, slope ∓2/b) and at ±b
-// (both 0). NaN θ gives NaN.
-[[nodiscard]] double quad(double theta, QuadParams p);
+// (both 0). NaN θ gives NaN. The middle section is written as a product of two ratios so that
+// neither factor over- or underflows.
+[[nodiscard]] inline double quad(double theta, QuadParams p) {
+  check_params(p);
+  const double x = std::abs(theta);
+  if (x >= p.b) return 0;
+  if (x > p.a) return ((p.b - x) / p.b) * ((p.b - x) / (p.b - p.a));
+  return 1 - (x / p.a) * (x / p.b);
+}
 
 // df/dθ, with the same section conventions as quad() (continuous, so they do not matter).
 [[nodiscard]] double quad_slope(double theta, QuadParams p);
@@ -37,7 +52,16 @@ void check_params(QuadParams p);
 // [-a, a] is section 0 and the closed outer rays are ±2, so the open middle intervals are ±1.
 //   -2: θ <= -b   -1: -b < θ < -a   0: -a <= θ <= a   1: a < θ < b   2: θ >= b
 // Throws Error for NaN θ.
-[[nodiscard]] int section_of(double theta, QuadParams p);
+[[nodiscard]] inline int section_of(double theta, QuadParams p) {
+  check_params(p);
+  if (std::isnan(theta)) detail::nan_theta();
+  // Same tests, in the same order, as quad(): |θ| >= b, then |θ| > a.
+  const double x = std::abs(theta);
+  const int side = theta < 0 ? -1 : 1;
+  if (x >= p.b) return 2 * side;
+  if (x > p.a) return side;
+  return 0;
+}
 
 // f on one section as c2·θ² + c1·θ + c0 (for forward differencing):
 //   0: c2 = -1/(ab), c1 = 0, c0 = 1
