@@ -34,7 +34,7 @@ flags="-CFLAGS -DPHONGSIM_PGO_PROBE=$$"
 PHONGSIM_VERILATOR_FLAGS="$flags" "$phongsim" build-rtl "$pipeline" > "$work/build-rtl.log" 2>&1 &
 builder=$!
 copied=""
-for _ in $(seq 1 3000); do
+while kill -0 "$builder" 2>/dev/null; do
   dir=$cache/build.tmp.$builder
   if [ -f "$dir/CMakeLists.txt" ] && [ -f "$dir/adapter_0.cpp" ]; then
     mkdir "$work/proj"
