@@ -117,6 +117,8 @@ EOT
     done
     # RTL that fails its co-simulation is refused, not timed: one line, exit 2, no JSON.
     ex="$src/examples/your-rtl"
+    "$phongsim" build-rtl lirp --rtl "$ex/my_lirp.sv" "$ex/my_lirp_wrong.sv" --top my_lirp_wrong \
+      >/dev/null 2>&1 || fail "build-rtl of the wrong LIRP"  # so that the bench prints no build line
     status=0
     "$phongsim" bench lirp --rtl "$ex/my_lirp.sv" "$ex/my_lirp_wrong.sv" --top my_lirp_wrong \
       --vectors 2000 --no-icarus --json "$tmp/wrong.json" >"$tmp/out" 2>"$tmp/err" || status=$?
