@@ -24,7 +24,7 @@ work=$(mktemp -d)
 probe=""
 cleanup() {
   rm -rf "$work"
-  if [ -n "$probe" ]; then rm -rf "$probe"; fi
+  case $probe in "$cache"/?*) rm -rf "$probe" ;; esac  # the probe plugin's cache entry only
 }
 trap cleanup EXIT
 
@@ -45,7 +45,8 @@ while kill -0 "$builder" 2>/dev/null; do
   sleep 0.02
 done
 wait "$builder" || { cat "$work/build-rtl.log" >&2; exit 1; }
-probe=$(dirname "$(grep -o '/[^ ]*/plugin\.so' "$work/build-rtl.log" | tail -1)")
+plugin=$(grep -o '/[^ ]*/plugin\.so' "$work/build-rtl.log" | tail -1 || true)
+if [ -n "$plugin" ]; then probe=$(dirname "$plugin"); fi
 if [ -z "$copied" ]; then
   echo "measure-pgo.sh: could not copy phongsim's generated project (see $work/build-rtl.log)" >&2
   exit 1
@@ -57,9 +58,9 @@ sed -i -e "s|$copied|$work/proj|g" -e "s|\\\$ORIGIN/\\.\\./$runtime|$cache/$runt
 
 # 2. Plain, instrumented and profiled builds in the same build directory.
 build() {  # build <CXX flags> <link flags> <output name>
-  cmake -S "$work/proj" -B "$work/proj/b" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    "-DCMAKE_CXX_FLAGS=$1" "-DCMAKE_MODULE_LINKER_FLAGS=$2" > "$work/cmake.log" 2>&1
-  cmake --build "$work/proj/b" > "$work/cmake.log" 2>&1 || { cat "$work/cmake.log" >&2; exit 1; }
+  { cmake -S "$work/proj" -B "$work/proj/b" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    "-DCMAKE_CXX_FLAGS=$1" "-DCMAKE_MODULE_LINKER_FLAGS=$2" &&
+    cmake --build "$work/proj/b"; } > "$work/cmake.log" 2>&1 || { cat "$work/cmake.log" >&2; exit 1; }
   cp "$work/proj/out_0/plugin_0.so" "$work/$3.so"
 }
 build "" "" plain
