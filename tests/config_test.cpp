@@ -15,6 +15,7 @@
 #include "model/fixed.h"
 #include "model/lirp.h"
 #include "sim/pipelines/registry.h"
+#include "tests/temp_dir.h"
 
 namespace {
 
@@ -315,8 +316,8 @@ TEST(ConfigModel, IntermediateOver63BitsIsRefusedNamingTheFile) {
             std::string(kOrigin) + ": " + prod);
 
   // Same from a real file: the message names its path.
-  const std::filesystem::path path =
-      std::filesystem::path(testing::TempDir()) / "config_test_huge.toml";
+  const phongsim::testing::TempDir tmp;
+  const std::filesystem::path path = tmp.path() / "config_test_huge.toml";
   {
     std::ofstream out(path);
     out << text;
@@ -325,7 +326,6 @@ TEST(ConfigModel, IntermediateOver63BitsIsRefusedNamingTheFile) {
   EXPECT_EQ(loaded.name(), "config_test_huge");
   EXPECT_EQ(ErrorOf([&] { (void)phongsim::make_model(lirp, loaded); }),
             path.string() + ": " + prod);
-  std::filesystem::remove(path);
 
   // The boundary is the last stage, p0 + prod: S1.29 / 1.29 gives prod S3.58 (62 bits) and
   // sum S4.58 (63 bits), accepted; S1.29 / 1.30 gives prod S3.59 (63) but sum S4.59 (64).

@@ -17,6 +17,7 @@
 #include "sim/pipelines/registry.h"
 #include "tests/config_items.h"
 #include "tests/error_of.h"
+#include "tests/temp_dir.h"
 
 namespace phongsim {
 namespace {
@@ -67,7 +68,8 @@ TEST(Coverpoints, CountMergeAndFile) {
   a.merge(b);
   EXPECT_EQ(a.size(), 8U);
   EXPECT_EQ(a.hit_points(), 4U);
-  const auto file = std::filesystem::temp_directory_path() / "phongsim-coverpoint-test.txt";
+  const testing::TempDir tmp;
+  const auto file = tmp.path() / "coverpoints.txt";
   a.prefixed("x/y:").write(file);
   const Coverpoints r = Coverpoints::read(file);
   EXPECT_EQ(r.names().front(), "x/y:p.low");

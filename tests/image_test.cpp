@@ -16,19 +16,13 @@
 #include <vector>
 
 #include "base/error.h"
+#include "tests/temp_dir.h"
 
 namespace phongsim {
 namespace {
 
 namespace fs = std::filesystem;
 using Bytes = std::vector<std::uint8_t>;
-
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("image_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 Bytes ReadBytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -106,7 +100,8 @@ TEST(Image, ConstructsFilledAndRefusesBadSizes) {
 // ---- PNG ----
 
 TEST(Png, RoundTripsSeveralSizes) {
-  const fs::path dir = TempDir("roundtrip");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   std::vector<Image> images = {Image(1, 1, {200, 10, 30}),
                                Noise(1, 1, 5),
                                Noise(3, 1, 1),
@@ -126,14 +121,16 @@ TEST(Png, RoundTripsSeveralSizes) {
 }
 
 TEST(Png, OverwritesAnExistingFile) {
-  const fs::path path = TempDir("overwrite") / "a.png";
+  const testing::TempDir tmp;
+  const fs::path path = tmp.path() / "a.png";
   write_png(Noise(5, 5, 1), path);
   write_png(Noise(4, 6, 2), path);
   EXPECT_EQ(read_png(path), Noise(4, 6, 2));
 }
 
 TEST(Png, SignatureAndHeaderFollowTheSpec) {
-  const fs::path path = TempDir("header") / "h.png";
+  const testing::TempDir tmp;
+  const fs::path path = tmp.path() / "h.png";
   write_png(Noise(300, 2, 7), path);
   const Bytes b = ReadBytes(path);
   ASSERT_GT(b.size(), 8u + 25u + 12u);
@@ -150,7 +147,8 @@ TEST(Png, SignatureAndHeaderFollowTheSpec) {
 }
 
 TEST(Png, FailedWritesLeaveNoFile) {
-  const fs::path dir = TempDir("unwritable");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   const fs::path missing = dir / "no-such-dir" / "x.png";
   ExpectErrorContaining([&] { write_png(Noise(4, 4, 1), missing); },
                         "cannot write " + missing.string());
@@ -183,7 +181,8 @@ void WriteOtherPng(const fs::path& path, png_uint_32 format, int bytes_per_pixel
 }
 
 TEST(Png, ReadErrorsNameTheFile) {
-  const fs::path dir = TempDir("readerr");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   ExpectErrorContaining([&] { (void)read_png(dir / "absent.png"); },
                         "cannot read " + (dir / "absent.png").string() + ": ");
 

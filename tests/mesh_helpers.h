@@ -1,56 +1,26 @@
-// Test helpers shared by the mesh and scene tests (mesh_test.cpp, scene_test.cpp): a fresh
-// temporary directory per test, and checks of a Mesh independent of phongsim::check() (well
-// formed, closed and consistently wound, signed volume).
+// Test helpers shared by the mesh and scene tests (mesh_test.cpp, scene_test.cpp): checks of a
+// Mesh independent of phongsim::check() (well formed, closed and consistently wound, signed
+// volume), and the per-test temporary directory of tests/temp_dir.h.
 #pragma once
 
-#include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <string>
-#include <system_error>
 #include <utility>
 
 #include "base/vec3.h"
 #include "sim/render/mesh.h"
+#include "tests/temp_dir.h"
 
 namespace phongsim::testing {
 
 inline bool StartsWith(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
 }
-
-// A fresh directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ =
-        std::filesystem::temp_directory_path() /
-        fmt::format("phongsim_mesh_test_{}_{}_{}", getpid(), info->test_suite_name(), info->name());
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  std::filesystem::path Write(const std::string& name, const std::string& content) const {
-    const std::filesystem::path p = path_ / name;
-    std::ofstream out(p, std::ios::binary);
-    out << content;
-    return p;
-  }
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // Every normal finite and of unit length, every index in range (independent of check()).
 inline void ExpectWellFormed(const Mesh& m) {

@@ -13,18 +13,12 @@
 
 #include "base/error.h"
 #include "sim/render/image.h"
+#include "tests/temp_dir.h"
 
 namespace phongsim {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("plot_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 fs::path Write(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
@@ -64,7 +58,8 @@ void ExpectPng(const fs::path& path, int min_width, int min_height) {
 }
 
 TEST(Plot, ScanlineFromASmallCsv) {
-  const fs::path dir = TempDir("scanline");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   const fs::path csv = Write(dir / "s.csv",
                              "x,phong [float] (reference),gouraud [rtl]\n"
                              "0,0,0\n1,0.25,0.2\n2,0.5,0.4\n3,1,0.6\n4,0.5,0.5\n5,0,0\n");
@@ -75,7 +70,8 @@ TEST(Plot, ScanlineFromASmallCsv) {
 
 TEST(Plot, ManySeriesAreDrawn) {
   // 35 curves: more than any one colour cycle.
-  const fs::path dir = TempDir("many");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   std::string text = "x";
   for (int c = 0; c < 35; ++c) text += fmt::format(",curve {}", c);
   text += "\n";
@@ -89,7 +85,8 @@ TEST(Plot, ManySeriesAreDrawn) {
 }
 
 TEST(Plot, BadDataIsOneLineAndNoFile) {
-  const fs::path dir = TempDir("bad");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   const fs::path out = dir / "s.png";
   const fs::path csv = dir / "s.csv";
   const std::string prefix = "cannot write " + out.string() + ": plot.py: ";
@@ -116,7 +113,8 @@ TEST(Plot, BadDataIsOneLineAndNoFile) {
 }
 
 TEST(Plot, ParetoFrontAndLabels) {
-  const fs::path dir = TempDir("pareto");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   const fs::path csv = Write(dir / "p.csv",
                              "series,label,area,max_error,pareto\n"
                              "lyon/default,#0 d=S1.9,281264,0.19,0\n"
@@ -131,7 +129,8 @@ TEST(Plot, ParetoFrontAndLabels) {
 }
 
 TEST(Plot, GridOfImages) {
-  const fs::path dir = TempDir("grid");
+  const testing::TempDir tmp;
+  const fs::path& dir = tmp.path();
   Image a(40, 30, {200, 40, 40});
   Image b(40, 30, {0, 0, 0});
   b.at(10, 10) = {255, 255, 255};

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/error_of.h"
+#include "tests/temp_dir.h"
 
 #include <fmt/format.h>
 
@@ -163,10 +164,8 @@ TEST(RenderFidelity, QuadraticDiffuseRemovesTheMachBand) {
 // file; `light` is the scene file's [[light]] line.
 constexpr int kGridCell = 12, kGridCells = 4, kGridOrigin = 8;
 
-std::string GridScene(const std::string& name, const std::string& light) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "render_test_grid";
-  std::filesystem::create_directories(dir);
+std::string GridScene(const std::filesystem::path& dir, const std::string& name,
+                      const std::string& light) {
   std::ofstream obj(dir / "grid.obj");
   for (int j = 0; j <= kGridCells; ++j) {
     for (int i = 0; i <= kGridCells; ++i) {
@@ -267,8 +266,9 @@ int MaxErrorAt(const RenderResult& r, const Image& img, const std::vector<Px>& p
 // is directional (and not with a point light: the test shows the difference), Fast Phong at the
 // centroids (its expansion point), Gouraud and quadratic shading at their samples.
 TEST(RenderMethods, ExactWhereTheSeedsSayTheyAre) {
-  const std::string point = GridScene("point", "position = [10, 15, 40]");
-  const std::string directional = GridScene("directional", "direction = [0.3, 0.5, 1]");
+  const testing::TempDir dir;
+  const std::string point = GridScene(dir.path(), "point", "position = [10, 15, 40]");
+  const std::string directional = GridScene(dir.path(), "directional", "direction = [0.3, 0.5, 1]");
   const std::vector<Px> vertices = GridPixels(kGridCell), samples = GridPixels(kGridCell / 2),
                         centroids = GridCentroids();
   int covered = 0;
@@ -304,7 +304,8 @@ TEST(RenderMethods, ExactWhereTheSeedsSayTheyAre) {
 // span (the triangle's edges). The spans here come from the quad unit's coverage rule applied
 // to the grid's triangles directly.
 TEST(RenderMethods, FenceIsExactAtTheSpanEnds) {
-  const std::string scene = GridScene("point", "position = [10, 15, 40]");
+  const testing::TempDir dir;
+  const std::string scene = GridScene(dir.path(), "point", "position = [10, 15, 40]");
   const RenderResult r = RenderWith(scene, {"fence", "highlight-track"}, "phong");
   std::vector<Px> ends;
   const auto v = [](int i, int j) {
@@ -367,9 +368,8 @@ TEST(RenderMethods, HighlightTrackCatchesTheHighlightInsideTheTriangle) {
 // the single triangle's point light twice as far along that direction changes Phong's highlight
 // but not one pixel of the map's; and the map's highlight is not where Phong's is.
 TEST(RenderMethods, EnvironmentMapCannotShowAPointLight) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "render_test_envmap";
-  std::filesystem::create_directories(dir);
+  const testing::TempDir tmp;
+  const std::filesystem::path& dir = tmp.path();
   // The triangle scene (sim/render/scene.h) with its light at (0.5, 0.5, 2), and twice as far from
   // the triangle's centre (0, 0.25, 0) in the same direction.
   std::vector<RenderResult> r;
