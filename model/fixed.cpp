@@ -98,53 +98,15 @@ Fixed from_raw(std::int64_t raw, Format fmt) {
   return {raw, fmt};
 }
 
-namespace {
+namespace detail {
 
-// 2^k as a double; a multiplication by it is exactly ldexp (both are the correctly rounded
-// product), without ldexp's library call, which dominated the stimulus' quantization.
-double pow2(int k) {
-  if (k >= 0 && k < 64) return static_cast<double>(std::uint64_t{1} << k);
-  if (k < 0 && k > -64) return 1 / static_cast<double>(std::uint64_t{1} << -k);  // exact
-  return std::ldexp(1.0, k);
-}
+void not_finite(double x) { throw Error(fmt::format("cannot quantize {}", x)); }
 
-}  // namespace
+double pow2_ldexp(int k) { return std::ldexp(1.0, k); }
 
-double round_scaled(double x, int frac_bits, Round round) {
-  if (!std::isfinite(x)) throw Error(fmt::format("cannot quantize {}", x));
-  const double s = x * pow2(frac_bits);   // exact (power-of-two scaling)
-  if (!(std::abs(s) < 0x1p52)) return s;  // an integer already: every mode keeps it
-  // Below 2^52 in integers and without branches on the value: std::floor is a library call in
-  // baseline x86-64 code, and the comparisons' branches mispredict on random stimulus values.
-  const auto t = static_cast<std::int64_t>(s);  // toward zero, exact
-  const std::int64_t f = t - static_cast<std::int64_t>(static_cast<double>(t) > s);  // floor
-  const double rest = s - static_cast<double>(f);  // exact: 0 <= rest < 1
-  std::int64_t up = 0;
-  switch (round) {
-    case Round::truncate:
-      break;
-    case Round::half_up:
-      up = static_cast<std::int64_t>(rest >= 0.5);
-      break;
-    case Round::half_even:  // above the half, or on it with f odd
-      up = static_cast<std::int64_t>(rest > 0.5) | (static_cast<std::int64_t>(rest == 0.5) & f & 1);
-      break;
-  }
-  return static_cast<double>(f + up);
-}
-
-bool raw_in_range(double scaled, Format fmt) {
-  // Bounds as exact doubles: max_raw() + 1 is a power of two, max_raw() itself may not be.
-  const double above_max = pow2(fmt.is_signed ? fmt.width() - 1 : fmt.width());
-  return scaled >= static_cast<double>(fmt.min_raw()) && scaled < above_max;
-}
-
-std::int64_t quantize(double x, Format fmt, Round round, Overflow overflow) {
-  const double q = round_scaled(x, fmt.frac_bits, round);
-  if (raw_in_range(q, fmt)) return static_cast<std::int64_t>(q);
-  if (overflow == Overflow::saturate) return q < 0 ? fmt.min_raw() : fmt.max_raw();
-  // Wrap: keep the low width bits of q. x·2^m beyond double's range (q infinite) means
-  // |x| >= 2^961, a multiple of 2^909, so its low 63 bits are all zero.
+std::int64_t wrap(double q, Format fmt) {
+  // Keep the low width bits of q. x·2^m beyond double's range (q infinite) means |x| >= 2^961,
+  // a multiple of 2^909, so its low 63 bits are all zero.
   if (!std::isfinite(q)) return 0;
   // fmod by a power of two is exact and |remainder| < 2^63: exact in __int128, and two's
   // complement masking then gives the low bits of negative values too.
@@ -152,9 +114,7 @@ std::int64_t quantize(double x, Format fmt, Round round, Overflow overflow) {
   return from_bits(static_cast<std::uint64_t>(static_cast<__int128>(rem)), fmt);
 }
 
-double to_real(std::int64_t raw, Format fmt) {
-  return static_cast<double>(raw) * pow2(-fmt.frac_bits);
-}
+}  // namespace detail
 
 Round parse_round(std::string_view name) {
   if (name == "truncate") return Round::truncate;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -222,10 +223,61 @@ struct Fixed {
 // for NaN or infinity. round_scaled() is the rounding step alone (result is an integer-valued
 // double, or +-infinity when x·2^frac exceeds double's range), for callers that want to reject
 // out-of-range reals instead of saturating them.
-[[nodiscard]] double round_scaled(double x, int frac_bits, Round round);
-[[nodiscard]] bool raw_in_range(double scaled, Format fmt);  // min_raw() <= scaled <= max_raw()
-[[nodiscard]] std::int64_t quantize(double x, Format fmt, Round round, Overflow overflow);
-[[nodiscard]] double to_real(std::int64_t raw, Format fmt);
+// (Inline, with their rare paths out of line: every stimulus quantizes its random geometry.)
+namespace detail {
+[[noreturn]] void not_finite(double x);                 // throws Error
+[[nodiscard]] std::int64_t wrap(double q, Format fmt);  // quantize()'s wrap of an integer q
+[[nodiscard]] double pow2_ldexp(int k);                 // ldexp(1, k)
+
+// 2^k as a double; a multiplication by it is exactly ldexp (both are the correctly rounded
+// product), without ldexp's library call, which dominated the stimulus' quantization.
+[[nodiscard]] inline double pow2(int k) {
+  if (k >= 0 && k < 64) return static_cast<double>(std::uint64_t{1} << k);
+  if (k < 0 && k > -64) return 1 / static_cast<double>(std::uint64_t{1} << -k);  // exact
+  return pow2_ldexp(k);
+}
+}  // namespace detail
+
+[[nodiscard]] inline double round_scaled(double x, int frac_bits, Round round) {
+  if (!std::isfinite(x)) detail::not_finite(x);
+  const double s = x * detail::pow2(frac_bits);  // exact (power-of-two scaling)
+  if (!(std::abs(s) < 0x1p52)) return s;         // an integer already: every mode keeps it
+  // Below 2^52 in integers and without branches on the value: std::floor is a library call in
+  // baseline x86-64 code, and the comparisons' branches mispredict on random stimulus values.
+  const auto t = static_cast<std::int64_t>(s);  // toward zero, exact
+  const std::int64_t f = t - static_cast<std::int64_t>(static_cast<double>(t) > s);  // floor
+  const double rest = s - static_cast<double>(f);  // exact: 0 <= rest < 1
+  std::int64_t up = 0;
+  switch (round) {
+    case Round::truncate:
+      break;
+    case Round::half_up:
+      up = static_cast<std::int64_t>(rest >= 0.5);
+      break;
+    case Round::half_even:  // above the half, or on it with f odd
+      up = static_cast<std::int64_t>(rest > 0.5) | (static_cast<std::int64_t>(rest == 0.5) & f & 1);
+      break;
+  }
+  return static_cast<double>(f + up);
+}
+
+// min_raw() <= scaled <= max_raw()
+[[nodiscard]] inline bool raw_in_range(double scaled, Format fmt) {
+  // Bounds as exact doubles: max_raw() + 1 is a power of two, max_raw() itself may not be.
+  const double above_max = detail::pow2(fmt.is_signed ? fmt.width() - 1 : fmt.width());
+  return scaled >= static_cast<double>(fmt.min_raw()) && scaled < above_max;
+}
+
+[[nodiscard]] inline std::int64_t quantize(double x, Format fmt, Round round, Overflow overflow) {
+  const double q = round_scaled(x, fmt.frac_bits, round);
+  if (raw_in_range(q, fmt)) return static_cast<std::int64_t>(q);
+  if (overflow == Overflow::saturate) return q < 0 ? fmt.min_raw() : fmt.max_raw();
+  return detail::wrap(q, fmt);
+}
+
+[[nodiscard]] inline double to_real(std::int64_t raw, Format fmt) {
+  return static_cast<double>(raw) * detail::pow2(-fmt.frac_bits);
+}
 
 [[nodiscard]] Round parse_round(std::string_view name);        // "truncate", "half_up", ...
 [[nodiscard]] Overflow parse_overflow(std::string_view name);  // "wrap", "saturate"
