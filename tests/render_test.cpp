@@ -161,7 +161,7 @@ TEST(RenderFidelity, QuadraticDiffuseRemovesTheMachBand) {
 // vertex, edge midpoint and triangle centroid on a pixel centre (cells of 12 pixels): pixel
 // (8 + 12i, 8 + 12j) is vertex (i, j). Normals tilt outwards like a dome's (centre 30 units
 // behind), so every lighting quantity varies over each triangle. Written as an OBJ and a scene
-// file; `light` is the scene file's [[light]] line.
+// file into the test's own directory `dir`; `light` is the scene file's [[light]] line.
 constexpr int kGridCell = 12, kGridCells = 4, kGridOrigin = 8;
 
 std::string GridScene(const std::filesystem::path& dir, const std::string& name,
