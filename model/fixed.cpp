@@ -102,8 +102,6 @@ namespace detail {
 
 void not_finite(double x) { throw Error(fmt::format("cannot quantize {}", x)); }
 
-double pow2_ldexp(int k) { return std::ldexp(1.0, k); }
-
 std::int64_t wrap(double q, Format fmt) {
   // Keep the low width bits of q. x·2^m beyond double's range (q infinite) means |x| >= 2^961,
   // a multiple of 2^909, so its low 63 bits are all zero.

@@ -219,25 +219,25 @@ struct Fixed {
   return raw;
 }
 
-// Real <-> fixed. quantize() rounds x·2^frac per `round` and then handles overflow; throws Error
-// for NaN or infinity. round_scaled() is the rounding step alone (result is an integer-valued
-// double, or +-infinity when x·2^frac exceeds double's range), for callers that want to reject
-// out-of-range reals instead of saturating them.
-// (Inline, with their rare paths out of line: every stimulus quantizes its random geometry.)
+// Real <-> fixed, inline with their rare paths out of line (every stimulus quantizes its random
+// geometry through them).
 namespace detail {
 [[noreturn]] void not_finite(double x);                 // throws Error
 [[nodiscard]] std::int64_t wrap(double q, Format fmt);  // quantize()'s wrap of an integer q
-[[nodiscard]] double pow2_ldexp(int k);                 // ldexp(1, k)
 
 // 2^k as a double; a multiplication by it is exactly ldexp (both are the correctly rounded
 // product), without ldexp's library call, which dominated the stimulus' quantization.
 [[nodiscard]] inline double pow2(int k) {
   if (k >= 0 && k < 64) return static_cast<double>(std::uint64_t{1} << k);
   if (k < 0 && k > -64) return 1 / static_cast<double>(std::uint64_t{1} << -k);  // exact
-  return pow2_ldexp(k);
+  return std::ldexp(1.0, k);
 }
 }  // namespace detail
 
+// Real <-> fixed. quantize() rounds x·2^frac per `round` and then handles overflow; throws Error
+// for NaN or infinity. round_scaled() is the rounding step alone (result is an integer-valued
+// double, or +-infinity when x·2^frac exceeds double's range), for callers that want to reject
+// out-of-range reals instead of saturating them.
 [[nodiscard]] inline double round_scaled(double x, int frac_bits, Round round) {
   if (!std::isfinite(x)) detail::not_finite(x);
   const double s = x * detail::pow2(frac_bits);  // exact (power-of-two scaling)
