@@ -179,5 +179,32 @@ TEST(LyonAnalysis, OutputErrorsAreTheDocumentedOnes) {
   }
 }
 
+// The stimulus' block path (vectors(): FieldRandom's fill, then the geometry) makes the vectors
+// of its one-at-a-time path (vector()), across the directed vectors' end and in blocks that end
+// anywhere, for both arrangements.
+TEST(LyonStimulus, VectorsAreOneVectorAtATime) {
+  for (const char* name : {"default", "fig8_k2"}) {
+    const Config cfg = Config::load(ConfigPath(name));
+    const PipelineInfo& lyon = find_pipeline("lyon");
+    const auto model = make_model(lyon, cfg);
+    const Stimulus stimulus = lyon.make_stimulus(*model, cfg);
+    const std::size_t n = model->inputs().size();
+    const std::uint64_t d = stimulus.directed_count();
+    for (const auto& [first, count] : {std::pair<std::uint64_t, std::size_t>{d - 3, 70},
+                                       {d, 1},
+                                       {d + 1000, 64},
+                                       {d + 77, 1500}}) {
+      std::vector<std::int64_t> got(count * n), want(n);
+      stimulus.vectors(9, first, count, got);
+      for (std::size_t v = 0; v < count; ++v) {
+        stimulus.vector(9, first + v, want);
+        for (std::size_t i = 0; i < n; ++i) {
+          ASSERT_EQ(got[v * n + i], want[i]) << name << " vector " << first + v << " field " << i;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace phongsim

@@ -106,7 +106,7 @@ TEST(FieldRandomTest, ValuesFollowTheDefinition) {
 }
 
 // fill() on every instruction set this CPU runs: the vectors of one call per vector, for counts
-// that end inside a block and start anywhere.
+// that end inside a block and start anywhere; with `skip`, of an Rng that drew that many first.
 TEST(FieldRandomTest, FillIsOneVectorAtATime) {
   const std::vector<Field> fields = fields_of(kFormats);
   const std::size_t n = fields.size();
@@ -121,13 +121,18 @@ TEST(FieldRandomTest, FillIsOneVectorAtATime) {
                                         {100, 64},
                                         {12345, 65},
                                         {~std::uint64_t{0} - 2000, 2000}}) {
-        std::vector<std::int64_t> got(count * n), want(n);
-        random.fill(seed, first, count, got);
-        for (std::size_t v = 0; v < count; ++v) {
-          random(seed, first + v, want);
-          for (std::size_t i = 0; i < n; ++i) {
-            ASSERT_EQ(got[v * n + i], want[i]) << fx::isa_name(isa) << " seed " << seed
-                                               << " vector " << first + v << " field " << i;
+        for (const std::uint64_t skip : {0, 1, 3}) {
+          std::vector<std::int64_t> got(count * n), want(n);
+          random.fill(seed, first, count, got, skip);
+          for (std::size_t v = 0; v < count; ++v) {
+            Rng rng(seed, kStimulusStream, first + v);
+            for (std::uint64_t k = 0; k < skip; ++k) (void)rng.next();
+            random(rng, want);
+            for (std::size_t i = 0; i < n; ++i) {
+              ASSERT_EQ(got[v * n + i], want[i])
+                  << fx::isa_name(isa) << " seed " << seed << " skip " << skip << " vector "
+                  << first + v << " field " << i;
+            }
           }
         }
       }

@@ -20,8 +20,9 @@ void InputContract::count(std::span<const std::int64_t> vectors, std::size_t wid
                           ContractCounts& counts) {
   if (!check_ || width == 0) return;
   counts.by_clause.resize(clauses_.size());
-  for (std::size_t at = 0; at + width <= vectors.size(); at += width) {
-    const int c = check_(vectors.subspan(at, width));
+  std::vector<std::int16_t> clauses(vectors.size() / width);
+  check_(vectors, width, clauses);
+  for (const std::int16_t c : clauses) {
     if (c == kIn) {
       ++counts.in;
     } else {

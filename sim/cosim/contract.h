@@ -10,6 +10,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace phongsim {
@@ -28,20 +29,42 @@ class InputContract {
  public:
   static constexpr int kIn = -1;
 
-  // The first clause `in` (one vector, raw values in the model's inputs() order) breaks, as an
-  // index into clauses(), or kIn. Vectors arrive in stream order from the model's reset state,
-  // so a pipeline whose words depend on the ones before them (kb: a span's event words on its
-  // header) keeps that state in the function object: a copy of an InputContract is a checker
-  // with its own state, and a fresh copy of the registry's starts from reset.
-  using Check = std::function<int(std::span<const std::int64_t> in)>;
+  // Checks vectors (back to back, `width` values each, as many as `clauses` has room for) in
+  // stream order from the model's reset state, writing for each the first clause it breaks, as
+  // an index into clauses(), or kIn. A pipeline whose words depend on the ones before them (kb:
+  // a span's event words on its header) keeps that state in the function object: a copy of an
+  // InputContract is a checker with its own state, and a fresh copy of the registry's starts
+  // from reset. One call per batch: a co-simulation checks every vector, and a call per vector
+  // through std::function cost about as much as LIRP's clauses themselves.
+  using Check = std::function<void(std::span<const std::int64_t> vectors, std::size_t width,
+                                   std::span<std::int16_t> clauses)>;
 
   InputContract() = default;  // none: nothing is counted
-  InputContract(std::vector<std::string> clauses, Check check)
-      : clauses_(std::move(clauses)), check_(std::move(check)) {}
+  // From a check of one vector (returning a clause index or kIn), run over a batch in one loop.
+  template <class CheckOne>
+  requires std::is_invocable_r_v<int, CheckOne&, std::span<const std::int64_t>> InputContract(
+      std::vector<std::string> clauses, CheckOne check)
+      : clauses_(std::move(clauses)),
+        check_([one = std::move(check)](std::span<const std::int64_t> vectors, std::size_t width,
+                                        std::span<std::int16_t> out) mutable {
+          for (std::size_t i = 0; i < out.size(); ++i) {
+            out[i] = static_cast<std::int16_t>(one(vectors.subspan(i * width, width)));
+          }
+        }) {}
 
   [[nodiscard]] bool defined() const { return static_cast<bool>(check_); }
   [[nodiscard]] const std::vector<std::string>& clauses() const { return clauses_; }
-  [[nodiscard]] int check(std::span<const std::int64_t> in) { return check_(in); }
+  // One vector: the first clause it breaks, or kIn.
+  [[nodiscard]] int check(std::span<const std::int64_t> in) {
+    std::int16_t c = 0;
+    check_(in, in.size(), std::span(&c, 1));
+    return c;
+  }
+  // clauses.size() vectors of `width` values from `vectors`, in order.
+  void check(std::span<const std::int64_t> vectors, std::size_t width,
+             std::span<std::int16_t> clauses) {
+    check_(vectors, width, clauses);
+  }
 
   // Checks `vectors` (back to back, `width` values each) in order, adding them to `counts`.
   void count(std::span<const std::int64_t> vectors, std::size_t width, ContractCounts& counts);

@@ -71,10 +71,9 @@ class Scoreboard {
     inputs_.resize(n * n_in_);
     stimulus_.vectors(seed_, first_ + pos, n, inputs_);
     if (contract_.defined()) {
-      for (std::uint64_t i = 0; i < n; ++i) {
-        clause_.push_back(static_cast<std::int16_t>(
-            contract_.check(std::span(inputs_).subspan(i * n_in_, n_in_))));
-      }
+      const std::size_t at = clause_.size();
+      clause_.resize(at + n);
+      contract_.check(inputs_, n_in_, std::span(clause_).subspan(at));
     }
     counts_.clear();
     (void)model_.eval_batch(inputs_, expected_, &counts_);

@@ -46,7 +46,7 @@ void FieldRandom::operator()(Rng& rng, std::span<std::int64_t> in) const {
 
 // operator() for a block of vectors field by field, each loop over the block's generators.
 void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t count,
-                       std::span<std::int64_t> out) const {
+                       std::span<std::int64_t> out, std::uint64_t skip) const {
   fx::on_kernel_isa([&] {
     constexpr std::size_t kBlock = 64;
     constexpr std::uint64_t kNarrow = std::uint64_t{1} << 32;
@@ -67,8 +67,8 @@ void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t coun
         // The loop for a field's span: fields narrower than 32 bits scale with half the products.
         const auto draw = [&](auto scale) {
           for (std::size_t v = 0; v < m; ++v) {
-            const std::uint64_t pick = Rng::output(state[v], 2 * i);
-            const std::uint64_t z = Rng::output(state[v], 2 * i + 1);
+            const std::uint64_t pick = Rng::output(state[v], skip + 2 * i);
+            const std::uint64_t z = Rng::output(state[v], skip + 2 * i + 1);
             const std::int64_t corner =
                 corners[d.corners_at + Rng::scaled_narrow(z, d.corner_count)];
             const std::int64_t uniform = d.lo + static_cast<std::int64_t>(scale(z, d.span));
@@ -87,8 +87,8 @@ void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t coun
 }
 
 Stimulus::Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
-                   RandomFn random)
-    : directed_(std::move(directed)), random_(std::move(random)) {
+                   RandomFn random, RandomBlockFn block)
+    : directed_(std::move(directed)), random_(std::move(random)), block_(std::move(block)) {
   if (!random_) fields_.emplace(model.inputs());
 }
 
@@ -111,6 +111,10 @@ void Stimulus::vectors(std::uint64_t seed, std::uint64_t first, std::size_t coun
   }
   if (fields_) {
     fields_->fill(seed, first + k, count - k, in.subspan(k * n_in));
+    return;
+  }
+  if (block_) {
+    block_(seed, first + k, count - k, in.subspan(k * n_in));
     return;
   }
   for (; k < count; ++k) random_(seed, first + k, in.subspan(k * n_in, n_in));

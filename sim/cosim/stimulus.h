@@ -34,8 +34,10 @@ class FieldRandom {
   // Vectors first .. first + count - 1 of `seed` back to back in `out`: the values of `count`
   // calls of the above, made a block of vectors at a time so that the loops over a block
   // vectorize (fx::on_kernel_isa). Thread-safe (no scratch).
-  void fill(std::uint64_t seed, std::uint64_t first, std::size_t count,
-            std::span<std::int64_t> out) const;
+  // `skip` > 0: fields from the Rng's outputs skip + 2i and skip + 2i + 1, i.e. the above on an
+  // Rng that has drawn `skip` numbers first (a pipeline that mixes this stimulus with its own).
+  void fill(std::uint64_t seed, std::uint64_t first, std::size_t count, std::span<std::int64_t> out,
+            std::uint64_t skip = 0) const;
 
  private:
   struct Draw {
@@ -56,10 +58,16 @@ class Stimulus {
   using RandomFn =
       std::function<void(std::uint64_t seed, std::uint64_t index, std::span<std::int64_t> in)>;
 
+  // Random vectors first .. first + count - 1 back to back in `out`: the same as `count` calls of
+  // a RandomFn, made a block at a time where that is faster.
+  using RandomBlockFn = std::function<void(std::uint64_t seed, std::uint64_t first,
+                                           std::size_t count, std::span<std::int64_t> out)>;
+
   // `directed` holds complete input vectors (raw values in the model's inputs() order).
-  // Random vectors come from `random` when given, otherwise from FieldRandom.
+  // Random vectors come from `random` when given, otherwise from FieldRandom; `block`, when
+  // given, makes the same vectors as `random` for vectors() (tests/lyon_test.cpp checks it).
   Stimulus(const PipelineModel& model, std::vector<std::vector<std::int64_t>> directed,
-           RandomFn random = {});
+           RandomFn random = {}, RandomBlockFn block = {});
 
   [[nodiscard]] std::uint64_t directed_count() const { return directed_.size(); }
 
@@ -85,6 +93,7 @@ class Stimulus {
  private:
   std::vector<std::vector<std::int64_t>> directed_;
   RandomFn random_;
+  RandomBlockFn block_;
   std::optional<FieldRandom> fields_;  // the random stimulus when no RandomFn is given
   GroupFn groups_;
 };

@@ -123,7 +123,19 @@ Stimulus make_lyon_stimulus(const PipelineModel& model) {
     }
     quantize_lyon_pixel(random_lyon_pixel(rng, f), f, in);
   };
-  return Stimulus(model, std::move(directed), random);
+  // The same a block at a time: every vector's bits from FieldRandom's vectorized fill (after
+  // the coin's draw), then the geometry over the half whose coin says so.
+  auto block = [f, bits, n = model.inputs().size()](std::uint64_t seed, std::uint64_t first,
+                                                    std::size_t count,
+                                                    std::span<std::int64_t> out) {
+    bits.fill(seed, first, count, out, 1);
+    for (std::size_t v = 0; v < count; ++v) {
+      Rng rng(seed, kStimulusStream, first + v);
+      if (rng.below(2) == 0) continue;
+      quantize_lyon_pixel(random_lyon_pixel(rng, f), f, out.subspan(v * n, n));
+    }
+  };
+  return Stimulus(model, std::move(directed), random, block);
 }
 
 // ---- input contract ----
