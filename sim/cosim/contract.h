@@ -1,9 +1,9 @@
 // Input contracts: the input domain on which a pipeline's accuracy claims hold (each spec doc's
-// "Input contract" section), as named clauses and a check of one vector against them. The
-// registry gives each configuration its contract (PipelineInfo::contract); co-simulation and
-// eval count the vectors inside and outside it. Bit-exactness is checked on every vector either
-// way: a vector out of contract is one on which the model and the RTL still agree, but the
-// pipeline's accuracy figures do not apply.
+// "Input contract" section), as named clauses and a check of one vector against them (run over
+// a batch of vectors per call). The registry gives each configuration its contract
+// (PipelineInfo::contract); co-simulation and eval count the vectors inside and outside it.
+// Bit-exactness is checked on every vector either way: a vector out of contract is one on which
+// the model and the RTL still agree, but the pipeline's accuracy figures do not apply.
 #pragma once
 
 #include <cstdint>
