@@ -56,8 +56,8 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   const Stimulus& stimulus = subject.stimulus;
   const std::size_t n_in = model.inputs().size();
   std::vector<std::int64_t> inputs(vectors * n_in);
+  std::vector<std::int16_t> clauses;  // the contract's verdicts (not kept)
   // Vectors from..to - 1 into `into` (their place in `inputs`, or a chunk's buffer).
-  std::vector<std::int16_t> clauses;
   const auto make = [&](InputContract& contract, std::size_t from, std::size_t to,
                         std::span<std::int64_t> into) {
     stimulus.vectors(1, stimulus.directed_count() + from, to - from, into);
