@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <malloc.h>
 #include <new>
 #include <string_view>
 
@@ -90,6 +91,12 @@ int print_version() {
 int main(int argc, char** argv) {
   using namespace phongsim::cli;
   phongsim::install_signal_cleanup();
+  // Freed buffers stay with the process for the next to reuse: every co-simulation shard,
+  // sweep point and bench run allocates its batch buffers afresh, and with glibc's defaults
+  // they went back to the kernel and were page-faulted in again each time (most of a small
+  // co-simulation's time; docs/performance.md).
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
   CLI::App app{
       "phongsim: co-simulates fixed-point pixel-shading RTL against its bit-accurate "
       "C++ model.\nExit status: 0 ok, 1 verification failure, 2 bad input; 130/143 when "

@@ -63,6 +63,16 @@ function(phongsim_add_rtl_plugin TARGET)
   # Fail at link time, not at dlopen, on a missing symbol.
   target_link_options(${TARGET} PRIVATE -Wl,-z,defs)
   target_link_libraries(${TARGET} PRIVATE fmt::fmt ZLIB::ZLIB Threads::Threads)
+  # The simulation threads the model was Verilated for (--threads N; 1 without it): the
+  # adapter's VerilatedContext asks for that many, where Verilator's default (one per hardware
+  # thread) starts a worker thread for every DUT made, each shard of a co-simulation making one.
+  set(threads 1)
+  list(FIND ARG_VERILATOR_ARGS "--threads" at)
+  if(at GREATER -1)
+    math(EXPR at "${at} + 1")
+    list(GET ARG_VERILATOR_ARGS ${at} threads)
+  endif()
+  target_compile_definitions(${TARGET} PRIVATE PHONGSIM_VERILATED_THREADS=${threads})
   verilate(${TARGET}
     SOURCES ${ARG_SOURCES}
     TOP_MODULE ${ARG_TOP}

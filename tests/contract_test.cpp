@@ -144,6 +144,10 @@ TEST(Contract, LirpOnePerClause) {
   const Loaded narrow("lirp", "narrow");  // p S1.6, a 1.4
   EXPECT_EQ(narrow.clause({64, 0, 0, 64, 0, 0, 8}), 2);
   EXPECT_EQ(narrow.clause({32, 0, 0, 32, 0, 0, 8}), InputContract::kIn);
+  // Its ends exactly: 31/32 (62/64) is in, 63/64 out; -1 is in.
+  EXPECT_EQ(narrow.clause({62, 0, 0, 62, 0, 0, 8}), InputContract::kIn);
+  EXPECT_EQ(narrow.clause({63, 0, 0, 63, 0, 0, 8}), 2);
+  EXPECT_EQ(narrow.clause({-64, 0, 0, -64, 0, 0, 8}), InputContract::kIn);
   // Unsigned channels: [0, 1].
   const Loaded colour("lirp", "colour8");
   EXPECT_EQ(colour.contract.clauses()[1], "p0, p1 in [0, 1]");

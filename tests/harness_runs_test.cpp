@@ -132,6 +132,16 @@ TEST_F(Cosim, BugDuplicateOfTheLastOutputIsCaught) {
   EXPECT_EQ(r.failure_kind, "unexpected output");
 }
 
+// The scoreboard compares outputs in runs across vectors, a run ending with each batch the
+// harness hands over: the run's last output, and the very last output of all, are compared too.
+TEST_F(Cosim, AWrongLastOutputIsCaught) {
+  const auto last = static_cast<std::int64_t>(kVectors - 1);
+  const CosimReport r = Run(Inject(Fault::corrupt_lsb, last), Options());
+  EXPECT_FALSE(r.passed) << r.summary();
+  EXPECT_EQ(r.failure_kind, "mismatch");
+  EXPECT_EQ(r.failure_detail->vector, kVectors - 1);
+}
+
 // CosimReport::outputs is "outputs compared in the main run". cosim.cpp subtracts one whenever
 // the run failed, but only a mismatch / unexpected output is counted by the harness and then
 // rejected; a deadlock or protocol violation involves no extra output, so the count comes out
@@ -268,6 +278,55 @@ TEST_F(Cosim, JobsDoNotChangeTheResult) {
     same(pass1, Run({}, o, nullptr, kShard), jobs);
     same(fail1, Run(two, o, nullptr, kShard), jobs);
   }
+}
+
+// ---- the scoreboard's rule ----
+
+// A combinational DUT: each vector's output, correct, in the very cycle the vector is accepted.
+// An output is due to a vector accepted before its cycle (docs/cosim.md), so this one is
+// unexpected, however right its value: the scoreboard must not match outputs to vectors by
+// order and value alone.
+class PassthroughDut final : public phongsim::RtlDut {
+ public:
+  explicit PassthroughDut(const LirpFormats& formats) : model_(formats) {}
+  void reset() override { cycle_ = 0; }
+  void set_input(std::span<const std::int64_t> fields) override {
+    in_.assign(fields.begin(), fields.end());
+  }
+  void set_in_valid(bool valid) override { in_valid_ = valid; }
+  void set_out_ready(bool ready) override { out_ready_ = ready; }
+  void settle() override {
+    if (in_valid_) (void)model_.eval(in_, out_);
+  }
+  [[nodiscard]] bool in_ready() const override { return out_ready_; }
+  [[nodiscard]] bool out_valid() const override { return in_valid_; }
+  void output(std::span<std::int64_t> fields) const override {
+    std::copy(out_.begin(), out_.end(), fields.begin());
+  }
+  void clock() override {
+    out_.clear();
+    ++cycle_;
+  }
+  [[nodiscard]] std::uint64_t cycle() const override { return cycle_; }
+  [[nodiscard]] bool assertion_failed() const override { return false; }
+  void open_trace(const std::string&) override {}
+  void close_trace() override {}
+
+ private:
+  LirpModel model_;
+  std::vector<std::int64_t> in_, out_;
+  bool in_valid_ = false, out_ready_ = false;
+  std::uint64_t cycle_ = 0;
+};
+
+TEST_F(Cosim, AnOutputInTheCycleItsVectorIsAcceptedIsUnexpected) {
+  const phongsim::CosimSubject subject{
+      "lirp",    cfg_, *model_,
+      stimulus_, true, [&] { return DutPtr(new PassthroughDut(formats_), DutDeleter{}); }};
+  const CosimReport r = phongsim::cosim(subject, Options());
+  EXPECT_FALSE(r.passed);
+  EXPECT_EQ(r.failure_kind, "unexpected output");
+  EXPECT_EQ(r.failure.find("UNEXPECTED OUTPUT at cycle 0:"), 0U) << r.failure;
 }
 
 // ---- input contract ----

@@ -52,6 +52,11 @@ class InputContract {
           }
         }) {}
 
+  // From a check of a batch (a pipeline whose one-vector check does not vectorize as it stands:
+  // LIRP's, which transposes its block of vectors first).
+  InputContract(std::vector<std::string> clauses, Check batch)
+      : clauses_(std::move(clauses)), check_(std::move(batch)) {}
+
   [[nodiscard]] bool defined() const { return static_cast<bool>(check_); }
   [[nodiscard]] const std::vector<std::string>& clauses() const { return clauses_; }
   // One vector: the first clause it breaks, or kIn.

@@ -62,7 +62,7 @@ class Scoreboard {
         n_out_(model.outputs().size()),
         contract_(contract) {  // a fresh checker: this run starts from reset
     offset_.push_back(0);
-    if (contract_.defined()) counts_in_contract_.by_clause.resize(contract_.clauses().size());
+    if (contract_.defined()) tally_.resize(contract_.clauses().size() + 1);
   }
 
   // The vectors from position `pos` (relative to first) on, with the model's outputs for them.
@@ -92,10 +92,18 @@ class Scoreboard {
                     std::span<const std::uint64_t> cycles, std::string& kind, std::string& report,
                     CosimFailure& detail) {
     accept_.insert(accept_.end(), accepted.begin(), accepted.end());
+    // The outputs in runs over many vectors (match_run); once a run fails to match, vector by
+    // vector: the outputs from j on that the oldest vector still owes, compared in one pass
+    // against its expected outputs (contiguous in both); a difference, or an output no vector
+    // owes, goes to check_one one output at a time, which reports it.
+    bool runs = true;
     for (std::size_t j = 0; j < cycles.size();) {
-      // The outputs from j on that the oldest vector still owes, compared in one pass against
-      // its expected outputs (contiguous in both); a difference, or an output no vector owes,
-      // goes to check_one one output at a time, which reports it.
+      if (runs) {
+        const std::size_t m = match_run(cycles.subspan(j), outputs.data() + j * n_out_);
+        j += m;
+        runs = m > 0;
+        continue;
+      }
       drop_finished(cycles[j]);
       if (front_owes(cycles[j])) {
         const std::size_t m = std::min<std::uint64_t>(owed(front_) - seen_, cycles.size() - j);
@@ -149,7 +157,13 @@ class Scoreboard {
   }
 
   // The accepted vectors inside and outside the input contract (empty when there is none).
-  [[nodiscard]] const ContractCounts& contract_counts() const { return counts_in_contract_; }
+  [[nodiscard]] ContractCounts contract_counts() const {
+    ContractCounts c;
+    if (tally_.empty()) return c;
+    c.in = tally_[0];
+    c.by_clause.assign(tally_.begin() + 1, tally_.end());
+    return c;
+  }
 
   [[nodiscard]] std::uint64_t latency_min() const { return latency_min_; }
   [[nodiscard]] std::uint64_t latency_max() const { return latency_max_; }
@@ -176,6 +190,43 @@ class Scoreboard {
       ++front_;
       seen_ = 0;
     }
+  }
+
+  // The outputs `got` (taken in `cycles`) matched in order to the vectors that owe them, each
+  // accepted before the cycle of its first output here, and compared in one pass (the expected
+  // outputs of consecutive vectors are contiguous). Returns how many, with front_, seen_ and the
+  // latencies moved past them; or 0, committing nothing, when the first output is due to no
+  // vector or any output of the run differs: check_one then finds and reports which.
+  std::size_t match_run(std::span<const std::uint64_t> cycles, const std::int64_t* got) {
+    std::uint64_t p = front_, s = seen_;
+    std::uint64_t lat_min = latency_min_, lat_max = latency_max_;
+    std::size_t run = 0;
+    while (run < cycles.size() && p < accepted()) {
+      const std::uint64_t c = cycles[run];
+      const std::uint64_t at = accept_[p - base_];
+      if (at >= c) break;  // no vector owes this output yet
+      const std::uint64_t owes = owed(p);
+      if (s < owes) {
+        if (s == 0) {
+          lat_min = std::min(lat_min, c - at);
+          lat_max = std::max(lat_max, c - at);
+        }
+        const std::uint64_t m = std::min<std::uint64_t>(owes - s, cycles.size() - run);
+        run += m;
+        s += m;
+      }
+      if (s == owes) {  // p is done (or owed nothing): the next output is a later vector's
+        ++p;
+        s = 0;
+      }
+    }
+    if (run == 0 || !same(got, expected(front_, seen_), run * n_out_)) return 0;
+    front_ = p;
+    seen_ = s;
+    latency_min_ = lat_min;
+    latency_max_ = lat_max;
+    checked_ += run;
+    return run;
   }
 
   // Compares one RTL output (`prev`: the one before it, or null); on a failure fills
@@ -271,14 +322,18 @@ class Scoreboard {
   // Counts the next `n` vectors the harness accepted against the contract: their clauses were
   // found when the batch was made (clause_, from clause_head_ on).
   void tally(std::size_t n) {
-    for (std::size_t k = 0; k < n && clause_head_ < clause_.size(); ++k) {
-      const int c = clause_[clause_head_++];
-      if (c == InputContract::kIn) {
-        ++counts_in_contract_.in;
-      } else {
-        ++counts_in_contract_.by_clause[static_cast<std::size_t>(c)];
-      }
+    const std::size_t end = std::min(clause_.size(), clause_head_ + n);
+    // One counting pass per clause (and kIn, at 0): vectorized, where a count per vector would
+    // wait on the previous one's store, or mispredict a branch on random stimulus.
+    const std::int16_t* const from = clause_.data() + clause_head_;
+    const std::size_t count = end - clause_head_;
+    for (std::size_t t = 0; t < tally_.size(); ++t) {
+      const auto clause = static_cast<std::int16_t>(static_cast<int>(t) + InputContract::kIn);
+      std::uint32_t k = 0;
+      for (std::size_t i = 0; i < count; ++i) k += from[i] == clause ? 1 : 0;
+      tally_[t] += k;
     }
+    clause_head_ = end;
     if (clause_head_ >= 4 * kBatch) {
       clause_.erase(clause_.begin(), clause_.begin() + static_cast<std::ptrdiff_t>(clause_head_));
       clause_head_ = 0;
@@ -306,7 +361,7 @@ class Scoreboard {
   InputContract contract_;
   std::vector<std::int16_t> clause_;  // per generated vector not yet accepted: its clause
   std::size_t clause_head_ = 0;
-  ContractCounts counts_in_contract_;
+  std::vector<std::uint64_t> tally_;  // accepted vectors in the contract, then per clause
   std::vector<std::int64_t> inputs_;  // the batch handed to the harness
   std::vector<std::uint32_t> counts_;
   std::vector<std::int64_t> expected_;  // outputs of vectors base_ .. (generated so far)

@@ -250,6 +250,9 @@ class VerilatedDut final : public RtlDut {
       : context_(std::make_unique<VerilatedContext>()), map_(inputs, outputs) {
     context_->traceEverOn(true);
     context_->fatalOnError(false);
+#ifdef PHONGSIM_VERILATED_THREADS  // set by phongsim's plugin builds (cmake/PhongsimRtl.cmake)
+    context_->threads(PHONGSIM_VERILATED_THREADS);
+#endif
     top_ = std::make_unique<Top>(context_.get(), "top");
     bind(*top_, map_);
     map_.check_complete();

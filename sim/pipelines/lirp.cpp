@@ -56,22 +56,45 @@ InputContract contract(const PipelineModel&, const Config& cfg) {
   const double scale = std::ldexp(1.0, f.p.frac_bits + f.a.frac_bits);
   const double out_lo = fx::to_real(f.out.min_raw(), f.out) * scale;
   const double out_hi = fx::to_real(f.out.max_raw(), f.out) * scale;
-  return InputContract({"a in [0, 1]", f.p.is_signed ? "p0, p1 in [-1, 1]" : "p0, p1 in [0, 1]",
-                        "p in the output range"},
-                       [=](std::span<const std::int64_t> in) {
-                         // Every clause without a branch (random vectors break them at random,
-                         // so branches would mispredict); the first one broken is returned.
-                         const bool a_out = (in[6] < 0) | (in[6] > one_a);
-                         bool p_out = false, range_out = false;
-                         for (int c = 0; c < 6; ++c) p_out |= (in[c] < p_lo) | (in[c] > one_p);
-                         for (int c = 0; c < 3; ++c) {
-                           const double p =
-                               static_cast<double>(in[c]) * static_cast<double>(one_a) +
-                               static_cast<double>(in[6]) * static_cast<double>(in[3 + c] - in[c]);
-                           range_out |= (p < out_lo) | (p > out_hi);
-                         }
-                         return a_out ? 0 : p_out ? 1 : range_out ? 2 : InputContract::kIn;
-                       });
+  constexpr std::size_t n_in = 7;  // p0 x y z, p1 x y z, a (LirpModel::inputs)
+  return InputContract(
+      {"a in [0, 1]", f.p.is_signed ? "p0, p1 in [-1, 1]" : "p0, p1 in [0, 1]",
+       "p in the output range"},
+      InputContract::Check([=](std::span<const std::int64_t> vectors, std::size_t width,
+                               std::span<std::int16_t> out) {
+        if (width != n_in)
+          throw Error(fmt::format("a LIRP vector has {} fields, not {}", n_in, width));
+        // A block of vectors at a time, field by field (structure of arrays), so that the
+        // clauses' loop vectorizes; every clause without a branch (random vectors break them at
+        // random), the first one broken kept.
+        fx::on_kernel_isa([&] {
+          constexpr std::size_t kBlock = 64;
+          alignas(64) std::int64_t v[n_in][kBlock];
+          for (std::size_t b = 0; b < out.size(); b += kBlock) {
+            const std::size_t m = std::min(kBlock, out.size() - b);
+            const std::int64_t* const in = vectors.data() + b * n_in;
+            for (std::size_t k = 0; k < m; ++k) {
+              for (std::size_t c = 0; c < n_in; ++c) v[c][k] = in[k * n_in + c];
+            }
+            std::int16_t* const o = out.data() + b;
+            for (std::size_t k = 0; k < m; ++k) {
+              const std::int64_t a = v[6][k];
+              const std::int64_t a_out = (a < 0) | (a > one_a);
+              std::int64_t p_out = 0, range_out = 0;
+              for (std::size_t c = 0; c < 6; ++c) p_out |= (v[c][k] < p_lo) | (v[c][k] > one_p);
+              for (std::size_t c = 0; c < 3; ++c) {
+                const double p =
+                    static_cast<double>(v[c][k]) * static_cast<double>(one_a) +
+                    static_cast<double>(a) * static_cast<double>(v[3 + c][k] - v[c][k]);
+                range_out |= (p < out_lo) | (p > out_hi);
+              }
+              const std::int64_t from_range = range_out != 0 ? 2 : InputContract::kIn;
+              const std::int64_t from_p = p_out != 0 ? 1 : from_range;
+              o[k] = static_cast<std::int16_t>(a_out != 0 ? 0 : from_p);
+            }
+          }
+        });
+      }));
 }
 
 int latency(const Config&) { return 3; }  // delta, prod, out (docs/lirp.md)
