@@ -66,12 +66,18 @@ function(phongsim_add_rtl_plugin TARGET)
   # The simulation threads the model was Verilated for (--threads N; 1 without it): the
   # adapter's VerilatedContext asks for that many, where Verilator's default (one per hardware
   # thread) starts a worker thread for every DUT made, each shard of a co-simulation making one.
+  # Verilator takes -threads as well as --threads.
   set(threads 1)
-  list(FIND ARG_VERILATOR_ARGS "--threads" at)
-  if(at GREATER -1)
-    math(EXPR at "${at} + 1")
-    list(GET ARG_VERILATOR_ARGS ${at} threads)
-  endif()
+  set(next_is_threads OFF)
+  foreach(arg IN LISTS ARG_VERILATOR_ARGS)
+    if(next_is_threads)
+      set(threads "${arg}")
+    endif()
+    set(next_is_threads OFF)
+    if(arg STREQUAL "--threads" OR arg STREQUAL "-threads")
+      set(next_is_threads ON)
+    endif()
+  endforeach()
   target_compile_definitions(${TARGET} PRIVATE PHONGSIM_VERILATED_THREADS=${threads})
   verilate(${TARGET}
     SOURCES ${ARG_SOURCES}

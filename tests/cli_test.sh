@@ -315,11 +315,11 @@ EOT
     PHONGSIM_VERILATOR_FLAGS="-CFLAGS -DNDEBUG" run --no-build >"$tmp/cflags" 2>&1
     grep -q "PHONGSIM_VERILATOR_FLAGS changed" "$tmp/cflags" ||
       fail "a C++ -D after -CFLAGS was refused: $(cat "$tmp/cflags")"
-    # A model Verilated for two simulation threads gets a context with two (its DUTs ask for
-    # as many threads as the model was built for).
-    PHONGSIM_VERILATOR_FLAGS="--threads 2" run >"$tmp/threads" 2>&1 ||
-      fail "--threads 2: $(cat "$tmp/threads")"
-    grep -q "^PASS lirp/default" "$tmp/threads" || fail "--threads 2: $(cat "$tmp/threads")"
+    # A model Verilated for two simulation threads (-threads: Verilator's --threads) gets a
+    # context with two: its DUTs ask for as many threads as the model was built for.
+    PHONGSIM_VERILATOR_FLAGS="-threads 2" run >"$tmp/threads" 2>&1 ||
+      fail "-threads 2: $(cat "$tmp/threads")"
+    grep -q "^PASS lirp/default" "$tmp/threads" || fail "-threads 2: $(cat "$tmp/threads")"
     # A plugin file given by hand is refused once a file it was built from changed.
     plugin=$("$phongsim" build-rtl lirp --rtl "$tmp/rtl/common" "$tmp/rtl/lirp" | sed -n 's/.*: \(.*plugin.so\)$/\1/p')
     [ -s "$plugin" ] || fail "build-rtl printed no plugin path"
