@@ -203,11 +203,13 @@ Stimulus span_stimulus(const PipelineModel& model, std::vector<std::vector<std::
     if (cache.chunk != c || cache.seed != seed) {
       Rng rng(seed, kStimulusStream, c);
       cache.words = chunk(rng);
-      cache.words.resize(chunk_words, filler);
       cache.chunk = c;
       cache.seed = seed;
     }
-    const Word& w = cache.words[r % chunk_words];
+    // The padding is served from `filler`, not copied into the chunk: most of a chunk is
+    // padding, and a copy per word was an allocation per word.
+    const std::uint64_t k = r % chunk_words;
+    const Word& w = k < cache.words.size() ? cache.words[k] : filler;
     std::copy(w.begin(), w.end(), in.begin());
   };
   Stimulus stimulus(model, std::move(directed), random);
