@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "base/error.h"
+#include "model/plan.h"
 
 namespace phongsim {
 namespace {
@@ -33,6 +37,38 @@ double kb_exact(const KbSpan& span, int i) {
   return sum;
 }
 
+// Branch-free, a term at a time, so that the loops over pixels vectorize (fx::on_kernel_isa;
+// this file is compiled without FMA contraction): per pixel the same operations in the same
+// order as kb_exact, kb::quad and kb::section_of. A span's setup did them one pixel at a time,
+// which was most of a kb co-simulation's stimulus.
+void kb_span_values(const KbSpan& span, int n, double* exact, std::uint8_t* changes) {
+  for (const KbTerm& t : span.terms) kb::check_params(t.ab);
+  std::fill(exact, exact + n, 0.0);
+  std::fill(changes, changes + n - 1, 0);
+  bool nan = false;
+  fx::on_kernel_isa([&] {
+    std::vector<int> section(static_cast<std::size_t>(n));
+    int* const sec = section.data();
+    for (const KbTerm& t : span.terms) {
+      const double a = t.ab.a, b = t.ab.b, theta0 = t.theta0, dtheta = t.dtheta, scale = t.scale;
+      bool term_nan = false;
+      for (int i = 0; i < n; ++i) {
+        const double th = theta0 + i * dtheta;
+        const double x = std::abs(th);
+        const double outer = ((b - x) / b) * ((b - x) / (b - a));
+        const double inner = 1 - (x / a) * (x / b);
+        exact[i] += scale * (x >= b ? 0.0 : x > a ? outer : inner);
+        const int side = th < 0 ? -1 : 1;
+        sec[i] = x >= b ? 2 * side : x > a ? side : 0;
+        term_nan |= th != th;
+      }
+      for (int i = 0; i + 1 < n; ++i) changes[i] |= sec[i] != sec[i + 1] ? 1 : 0;
+      nan |= term_nan;
+    }
+  });
+  if (nan) kb::detail::nan_theta();  // as kb::section_of would have
+}
+
 std::vector<std::vector<std::int64_t>> kb_program(const KbSpan& span, KbPolicy policy,
                                                   const KbFormats& formats) {
   const int length = span.length;
@@ -43,26 +79,11 @@ std::vector<std::vector<std::int64_t>> kb_program(const KbSpan& span, KbPolicy p
     return fx::quantize(x, formats.acc, fx::Round::half_even, fx::Overflow::saturate);
   };
   std::vector<double> exact(static_cast<std::size_t>(length) + 2);
-  for (int i = 0; i < length + 2; ++i) exact[i] = kb_exact(span, i);
+  std::vector<std::uint8_t> changed(static_cast<std::size_t>(length) + 1);
+  kb_span_values(span, length + 2, exact.data(), changed.data());
   const auto second = [&exact](int i) { return exact[i + 2] - 2 * exact[i + 1] + exact[i]; };
-  // Each pixel's sections once, the section of every term (the key of which quadratic each
-  // term is on), pixel after pixel in one array: the loops below compare each pixel's with its
-  // neighbours'. (One array, not one per pixel: the allocations were a tenth of a kb
-  // co-simulation.)
-  const std::size_t terms = span.terms.size();
-  std::vector<int> sections((static_cast<std::size_t>(length) + 2) * terms);
-  for (int i = 0; i < length + 2; ++i) {
-    for (std::size_t t = 0; t < terms; ++t) {
-      sections[i * terms + t] = kb::section_of(theta(span.terms[t], i), span.terms[t].ab);
-    }
-  }
-  const auto changes = [&sections, terms](int i) {  // pixel i + 1's sections differ from i's
-    const int* const at = sections.data() + static_cast<std::size_t>(i) * terms;
-    for (std::size_t t = 0; t < terms; ++t) {
-      if (at[t] != at[terms + t]) return true;
-    }
-    return false;
-  };
+  // Pixel i + 1's sections (which quadratic each term is on) differ from pixel i's.
+  const auto changes = [&changed](int i) { return changed[static_cast<std::size_t>(i)] != 0; };
 
   std::vector<std::vector<std::int64_t>> events;
   std::int64_t f0 = q(exact[0]);

@@ -46,6 +46,12 @@ struct KbSpan {
 // The exact span value at pixel i: the sum of the terms.
 [[nodiscard]] double kb_exact(const KbSpan& span, int i);
 
+// kb_exact(span, i) for pixels i = 0 .. n - 1 (n >= 1) into `exact`, and into `changes` (n - 1
+// of them) whether pixel i + 1 is on another quadratic than pixel i in some term
+// (kb::section_of); the same values, a span at a time on the kernel instruction set. Throws
+// Error as kb_exact and kb::section_of do (invalid (a, b), NaN θ).
+void kb_span_values(const KbSpan& span, int n, double* exact, std::uint8_t* changes);
+
 // The program (header, then events; each word n, count, f, d1, d2, reload) that makes the engine
 // evaluate `span` with `policy`, values rounded to nearest (ties to even) in the accumulator
 // format. Throws Error when the span needs more events than the header's count can hold.

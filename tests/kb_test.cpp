@@ -2,12 +2,15 @@
 // (model/kb_setup.h) against the exact span, and the drift figures docs/kb.md states.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 
 #include "base/error.h"
+#include "base/rng.h"
 #include "model/config.h"
 #include "model/kb.h"
 #include "model/kb_setup.h"
+#include "model/plan.h"
 #include "sim/pipelines/kb.h"
 #include "sim/pipelines/registry.h"
 
@@ -110,6 +113,54 @@ TEST(KbSetup, RefusesSpansThatNeedTooManyEvents) {
   KbFormats f = Formats(24);
   f.event_bits = 1;  // one event at most
   EXPECT_THROW((void)kb_program(Sweep(100), KbPolicy::d2_only, f), Error);
+}
+
+// kb_span_values on every instruction set this CPU runs: bit for bit kb_exact at every pixel, and
+// a change exactly where some term's kb::section_of changes, on random spans of one to four terms
+// that cross the break points (including exactly at them: theta0 on ±a or ±b, dtheta 0).
+TEST(KbSetup, SpanValuesAreKbExactAndSectionOf) {
+  const fx::Isa chosen = fx::kernel_isa();
+  for (const fx::Isa isa : fx::supported_isas()) {
+    fx::set_kernel_isa(isa);
+    for (std::uint64_t s = 0; s < 300; ++s) {
+      Rng rng(11, kStimulusStream, s);
+      KbSpan span;
+      span.length = 1 + static_cast<int>(rng.below(s < 30 ? 8 : 3000));
+      const auto terms = static_cast<int>(1 + rng.below(4));
+      for (int t = 0; t < terms; ++t) {
+        KbTerm term;
+        term.ab = kb::closed_form(1 + static_cast<double>(rng.below(200)));
+        const double ends[] = {term.ab.a, -term.ab.a, term.ab.b, -term.ab.b};
+        term.theta0 = s % 7 == 0 ? ends[rng.below(4)] : 3 * rng.symmetric();
+        term.dtheta = s % 11 == 0 ? 0.0 : 4 * rng.symmetric() / span.length;
+        term.scale = rng.uniform();
+        span.terms.push_back(term);
+      }
+      const int n = span.length + 2;
+      std::vector<double> exact(static_cast<std::size_t>(n));
+      std::vector<std::uint8_t> changes(static_cast<std::size_t>(n) - 1);
+      kb_span_values(span, n, exact.data(), changes.data());
+      for (int i = 0; i < n; ++i) {
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(exact[i]),
+                  std::bit_cast<std::uint64_t>(kb_exact(span, i)))
+            << fx::isa_name(isa) << " span " << s << " pixel " << i;
+        if (i + 1 == n) break;
+        bool want = false;
+        for (const KbTerm& t : span.terms) {
+          want = want || kb::section_of(t.theta0 + i * t.dtheta, t.ab) !=
+                             kb::section_of(t.theta0 + (i + 1) * t.dtheta, t.ab);
+        }
+        ASSERT_EQ(changes[i] != 0, want) << fx::isa_name(isa) << " span " << s << " pixel " << i;
+      }
+    }
+    KbSpan nan_span{{KbTerm{std::nan(""), 0.01, kb::closed_form(8), 1}}, 4};
+    std::vector<double> exact(6);
+    std::vector<std::uint8_t> changes(5);
+    EXPECT_THROW(kb_span_values(nan_span, 6, exact.data(), changes.data()), Error);
+    nan_span.terms[0] = KbTerm{0.1, 0.01, kb::QuadParams{0.2, 0.1}, 1};  // a > b
+    EXPECT_THROW(kb_span_values(nan_span, 6, exact.data(), changes.data()), Error);
+  }
+  fx::set_kernel_isa(chosen);
 }
 
 // docs/kb.md: the guard bits the bound asks for are enough, and on these spans one fewer is not
