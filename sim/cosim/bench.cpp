@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "base/error.h"
+#include "sim/cosim/cosim.h"
 #include "sim/cosim/harness.h"
 
 namespace phongsim {
@@ -21,26 +22,34 @@ BenchRate rate(std::uint64_t vectors, std::uint64_t outputs, double seconds) {
 }
 
 // The vectors a chunk at a time (outputs of a chunk discarded before the next: a quad bench
-// would otherwise hold gigabytes of pixels). Chunks of about kChunk vectors end where an
-// independent group of vectors begins (Stimulus::group_start: kb's span programs), because a
-// native kernel starts each call from the reset state.
-constexpr std::size_t kChunk = 1024;
-
-// The vector positions where chunks end (the last one `vectors`); bench vector i is stimulus
-// vector first + i.
-std::vector<std::size_t> chunk_ends(const Stimulus& stimulus, std::uint64_t first,
+// would otherwise hold gigabytes of pixels), in the co-simulation's batches (next_cosim_batch:
+// sized by the outputs of the chunk before), each ending where an independent group of vectors
+// begins (Stimulus::group_start: kb's span programs), because a native kernel starts each call
+// from the reset state. Returns the vector positions where chunks end (the last one
+// `vectors`); bench vector i is stimulus vector first + i. Untimed: the model evaluates every
+// chunk once to size the next, from reset and back to it.
+std::vector<std::size_t> chunk_ends(const Stimulus& stimulus, PipelineModel& model,
+                                    std::span<const std::int64_t> inputs, std::uint64_t first,
                                     std::size_t vectors) {
+  const std::size_t n_in = model.inputs().size(), n_out = model.outputs().size();
   std::vector<std::size_t> ends;
+  std::vector<std::int64_t> out;
+  model.reset();
   std::size_t at = 0;
+  std::uint64_t batch = kCosimBatch;
   while (at < vectors) {
-    std::size_t end = std::min(vectors, at + kChunk);
+    std::size_t end = std::min<std::size_t>(vectors, at + batch);
     if (end < vectors) {
       end = static_cast<std::size_t>(
           std::min<std::uint64_t>(vectors, stimulus.group_start(first + end) - first));
     }
+    out.clear();
+    const std::size_t outputs = model.eval_batch(inputs.subspan(at * n_in, (end - at) * n_in), out);
+    batch = next_cosim_batch(end - at, outputs * n_out);
     ends.push_back(end);
     at = end;
   }
+  model.reset();
   return ends;
 }
 
@@ -98,12 +107,12 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   bare->bare_load(inputs, n_in);
   // Stimulus, model and native kernel are timed a chunk at a time: each chunk made again into
   // one small buffer, the model and the kernel reading it right after, as a co-simulation's
-  // scoreboard does (it makes a batch of 1024 vectors and evaluates it at once). Writing or
+  // scoreboard does with its batches (chunk_ends). Writing or
   // reading all the vectors in one array larger than the caches would time the memory instead
   // (lirp's 2,000,000 vectors are 112 MB). The native kernel's outputs are compared with the
   // model's, chunk by chunk (not timed).
-  const std::vector<std::size_t> ends =
-      chunk_ends(stimulus, stimulus.directed_count(), static_cast<std::size_t>(vectors));
+  const std::vector<std::size_t> ends = chunk_ends(
+      stimulus, model, inputs, stimulus.directed_count(), static_cast<std::size_t>(vectors));
   std::vector<std::int64_t> out, want, buffer;
   out.reserve(1 << 20);
   want.reserve(1 << 20);

@@ -49,12 +49,6 @@ std::string output_table(const std::vector<Field>& fields, const std::int64_t* w
 // still owes outputs; none: an unexpected output.
 class Scoreboard {
  public:
-  static constexpr std::uint64_t kBatch = 1024;
-  // Output values a batch's expected outputs are sized to (512 KB, about a core's L2): the
-  // walkers' triangles have hundreds of pixels each, and a batch of 1,024 of them (20 MB of
-  // expected outputs) was written and read back from memory.
-  static constexpr std::uint64_t kBatchValues = 1 << 16;
-
   Scoreboard(PipelineModel& model, const Stimulus& stimulus, const InputContract& contract,
              std::uint64_t seed, std::uint64_t first, std::uint64_t count)
       : model_(model),
@@ -82,10 +76,8 @@ class Scoreboard {
     counts_.clear();
     const std::size_t values = model_.eval_batch(inputs_, expected_, &counts_) * n_out_;
     for (const std::uint32_t c : counts_) offset_.push_back(offset_.back() + c);
-    // The next batch as many vectors as this one's outputs say fit kBatchValues (the batches
-    // decide nothing but the memory: the vectors and their order are the same).
-    batch_ =
-        std::clamp<std::uint64_t>(n * kBatchValues / std::max<std::size_t>(values, 1), 1, kBatch);
+    // The batches decide nothing but the memory: the vectors and their order are the same.
+    batch_ = next_cosim_batch(n, values);
     InputBatch b;
     b.vectors = inputs_;
     if (pos + n >= count_) {
@@ -342,7 +334,7 @@ class Scoreboard {
       tally_[t] += k;
     }
     clause_head_ = end;
-    if (clause_head_ >= 4 * kBatch) {
+    if (clause_head_ >= 4 * kCosimBatch) {
       clause_.erase(clause_.begin(), clause_.begin() + static_cast<std::ptrdiff_t>(clause_head_));
       clause_head_ = 0;
     }
@@ -351,7 +343,7 @@ class Scoreboard {
   // Forgets vectors that are done, now and then.
   void compact() {
     const std::uint64_t done = front_ - base_;
-    if (done < 4 * kBatch && offset_[done] * n_out_ < 4 * kBatchValues) return;
+    if (done < 4 * kCosimBatch && offset_[done] * n_out_ < 4 * kCosimBatchValues) return;
     const std::uint64_t outputs_done = offset_[done];
     expected_.erase(expected_.begin(),
                     expected_.begin() + static_cast<std::ptrdiff_t>(outputs_done * n_out_));
@@ -369,9 +361,9 @@ class Scoreboard {
   InputContract contract_;
   std::vector<std::int16_t> clause_;  // per generated vector not yet accepted: its clause
   std::size_t clause_head_ = 0;
-  std::vector<std::uint64_t> tally_;  // accepted vectors in the contract, then per clause
-  std::vector<std::int64_t> inputs_;  // the batch handed to the harness
-  std::uint64_t batch_ = kBatch;      // vectors in the next batch
+  std::vector<std::uint64_t> tally_;   // accepted vectors in the contract, then per clause
+  std::vector<std::int64_t> inputs_;   // the batch handed to the harness
+  std::uint64_t batch_ = kCosimBatch;  // vectors in the next batch
   std::vector<std::uint32_t> counts_;
   std::vector<std::int64_t> expected_;  // outputs of vectors base_ .. (generated so far)
   std::vector<std::uint64_t> offset_;   // per vector from base_, into expected_ (in outputs)

@@ -4,6 +4,8 @@
 // configuration, seed, vector index and cycle and the command that reproduces it.
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -131,5 +133,17 @@ struct CosimSubject {
 };
 
 CosimReport cosim(const CosimSubject& subject, const CosimOptions& options);
+
+// The scoreboard makes and evaluates the vectors a batch at a time: at most kCosimBatch, and
+// after a batch of `n` vectors whose expected outputs came to `values` values, as many as would
+// come to about kCosimBatchValues (512 KB, about a core's L2: the walkers' triangles have
+// hundreds of pixels each, and 1,024 of them, 20 MB of expected outputs, were written and read
+// back from memory). The bench times the model in the same batches.
+inline constexpr std::uint64_t kCosimBatch = 1024;
+inline constexpr std::uint64_t kCosimBatchValues = 1 << 16;
+[[nodiscard]] inline std::uint64_t next_cosim_batch(std::uint64_t n, std::uint64_t values) {
+  return std::clamp<std::uint64_t>(n * kCosimBatchValues / std::max<std::uint64_t>(values, 1), 1,
+                                   kCosimBatch);
+}
 
 }  // namespace phongsim
