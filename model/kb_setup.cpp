@@ -11,7 +11,8 @@
 namespace phongsim {
 namespace {
 
-double theta(const KbTerm& t, int i) { return t.theta0 + i * t.dtheta; }
+// inline: kb_span_values calls it on the kernel instruction set (fx::on_kernel_isa).
+inline double theta(const KbTerm& t, int i) { return t.theta0 + i * t.dtheta; }
 
 }  // namespace
 
@@ -37,10 +38,10 @@ double kb_exact(const KbSpan& span, int i) {
   return sum;
 }
 
-// Branch-free, a term at a time, so that the loops over pixels vectorize (fx::on_kernel_isa;
-// this file is compiled without FMA contraction): per pixel the same operations in the same
-// order as kb_exact, kb::quad and kb::section_of. A span's setup did them one pixel at a time,
-// which was most of a kb co-simulation's stimulus.
+// A term at a time, so that the loops over pixels vectorize (fx::on_kernel_isa, the sections'
+// formulas branch-free; this file is compiled without FMA contraction): per pixel what kb_exact
+// and kb::section_of compute. A span's setup did them one pixel at a time, which was most of a
+// kb co-simulation's stimulus.
 void kb_span_values(const KbSpan& span, int n, double* exact, std::uint8_t* changes) {
   for (const KbTerm& t : span.terms) kb::check_params(t.ab);
   std::fill(exact, exact + n, 0.0);
@@ -49,17 +50,13 @@ void kb_span_values(const KbSpan& span, int n, double* exact, std::uint8_t* chan
   fx::on_kernel_isa([&] {
     std::vector<int> section(static_cast<std::size_t>(n));
     int* const sec = section.data();
-    for (const KbTerm& t : span.terms) {
-      const double a = t.ab.a, b = t.ab.b, theta0 = t.theta0, dtheta = t.dtheta, scale = t.scale;
+    for (const KbTerm& term : span.terms) {
+      const KbTerm t = term;  // a copy: the stores to exact[] may alias the span's terms
       bool term_nan = false;
       for (int i = 0; i < n; ++i) {
-        const double th = theta0 + i * dtheta;
-        const double x = std::abs(th);
-        const double outer = ((b - x) / b) * ((b - x) / (b - a));
-        const double inner = 1 - (x / a) * (x / b);
-        exact[i] += scale * (x >= b ? 0.0 : x > a ? outer : inner);
-        const int side = th < 0 ? -1 : 1;
-        sec[i] = x >= b ? 2 * side : x > a ? side : 0;
+        const double th = theta(t, i);
+        exact[i] += t.scale * kb::detail::quad_unchecked(th, t.ab);
+        sec[i] = kb::detail::section_unchecked(th, t.ab);
         term_nan |= th != th;
       }
       for (int i = 0; i + 1 < n; ++i) changes[i] |= sec[i] != sec[i + 1] ? 1 : 0;
