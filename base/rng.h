@@ -16,6 +16,10 @@ class Rng {
 
   // A plain splitmix64 sequence from `state` (the float references' test meshes use it).
   static Rng from_state(std::uint64_t state) { return Rng(state); }
+  // The state from_state() continues this sequence from.
+  [[nodiscard]] std::uint64_t state() const { return state_; }
+  // Skips `count` values of next().
+  void discard(std::uint64_t count) { state_ += count * kGamma; }
 
   // splitmix64 (Steele, Lea, Flood 2014).
   std::uint64_t next() { return finalize(state_ += kGamma); }

@@ -5,6 +5,7 @@
 // interpolator's contracts the units give the wrong answers the contracts warn of.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -15,6 +16,7 @@
 #include "model/kb.h"
 #include "model/kb_setup.h"
 #include "model/lyon.h"
+#include "model/plan.h"
 #include "model/quad.h"
 #include "model/quad_setup.h"
 #include "ref/kb_float.h"
@@ -330,6 +332,45 @@ TEST(Contract, RandomStimulusIsOnBothSides) {
     EXPECT_GT(counts.in, 0U) << name;
     EXPECT_GT(counts.out(), 0U) << name;
   }
+}
+
+// The checks that run a batch on the kernel instruction set (LIRP's and Lyon's): a batch of
+// stimulus vectors checked in one call, and in calls of 37, on every instruction set, gives the
+// clauses of one vector at a time on the baseline.
+TEST(Contract, BatchesAreOneAtATimeOnEveryIsa) {
+  const fx::Isa chosen = fx::kernel_isa();
+  for (const auto& name : {"lirp", "lyon"}) {
+    const Loaded l(name, "default");
+    const Stimulus s = l.pipeline.make_stimulus(*l.model, l.cfg);
+    const std::size_t width = l.model->inputs().size();
+    const std::size_t count = s.directed_count() + 3000;
+    Vector vectors(count * width);
+    s.vectors(1, 0, count, vectors);
+    fx::set_kernel_isa(fx::Isa::baseline);
+    std::vector<int> want;
+    for (std::size_t i = 0; i < count; ++i) {
+      want.push_back(
+          l.clause(Vector(vectors.begin() + static_cast<std::ptrdiff_t>(i * width),
+                          vectors.begin() + static_cast<std::ptrdiff_t>((i + 1) * width))));
+    }
+    for (const fx::Isa isa : fx::supported_isas()) {
+      fx::set_kernel_isa(isa);
+      for (const std::size_t batch : {count, std::size_t{37}}) {
+        InputContract c = l.contract;
+        std::vector<std::int16_t> got(count);
+        for (std::size_t b = 0; b < count; b += batch) {
+          const std::size_t m = std::min(batch, count - b);
+          c.check(std::span(vectors).subspan(b * width, m * width), width,
+                  std::span(got).subspan(b, m));
+        }
+        for (std::size_t i = 0; i < count; ++i) {
+          ASSERT_EQ(got[i], want[i])
+              << name << " " << fx::isa_name(isa) << " batch " << batch << " vector " << i;
+        }
+      }
+    }
+  }
+  fx::set_kernel_isa(chosen);
 }
 
 }  // namespace

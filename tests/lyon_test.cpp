@@ -1,14 +1,21 @@
 // The Lyon model (model/lyon.h): exact outputs on hand-computed pixels, configuration refusals,
 // stage formats, and the accuracy figures docs/lyon.md states (as regression bounds).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
 #include <string>
 
 #include "base/error.h"
 #include "model/config.h"
 #include "model/lyon.h"
+#include "model/plan.h"
 #include "sim/pipelines/lyon.h"
+#include "sim/pipelines/lyon_geometry.h"
 #include "sim/pipelines/registry.h"
 
 namespace phongsim {
@@ -203,6 +210,165 @@ TEST(LyonStimulus, VectorsAreOneVectorAtATime) {
         }
       }
     }
+  }
+}
+
+// Every configuration's formats, and vector formats at and beyond the block path's widest (22
+// fraction bits: a rounding tolerance of 1/16 LSB; 26: the pixel-at-a-time path throughout).
+std::vector<LyonFormats> GeometryFormats() {
+  std::vector<LyonFormats> all;
+  for (const auto& path : pipeline_configs(find_pipeline("lyon"))) {
+    all.push_back(AsLyon(Load(path.stem().string())).formats());
+  }
+  for (const int frac : {22, 26}) {
+    LyonFormats f = all.front();
+    f.vec = fx::Format{true, 1, frac};
+    all.push_back(f);
+  }
+  return all;
+}
+
+// The generators of `count` stimulus vectors after their coin's draw, as the stimulus passes them.
+std::vector<std::uint64_t> GeometryStates(std::uint64_t seed, std::size_t count) {
+  std::vector<std::uint64_t> states;
+  for (std::size_t i = 0; i < count; ++i) {
+    Rng rng(seed, kStimulusStream, 1000 + i);
+    (void)rng.next();
+    states.push_back(rng.state());
+  }
+  return states;
+}
+
+// random_lyon_pixels is quantize_lyon_pixel(random_lyon_pixel(...)) bit for bit, on every
+// instruction set, for every configuration's formats and wider ones; it writes the rows it is
+// given and no others.
+TEST(LyonGeometry, BlockIsPixelAtATime) {
+  const fx::Isa chosen = fx::kernel_isa();
+  const std::vector<std::uint64_t> states = GeometryStates(3, 40000);
+  std::vector<std::uint32_t> rows(states.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<std::uint32_t>(2 * i + 1);
+  for (const fx::Isa isa : fx::supported_isas()) {
+    fx::set_kernel_isa(isa);
+    for (const LyonFormats& f : GeometryFormats()) {
+      SCOPED_TRACE(fmt::format("{} vec {}", fx::isa_name(isa), f.vec.str()));
+      std::vector<std::int64_t> out(14 * 2 * states.size(), -7);
+      random_lyon_pixels(states, rows, f, out);
+      for (std::size_t i = 0; i < states.size(); ++i) {
+        Rng rng = Rng::from_state(states[i]);
+        const auto want = quantize_lyon_pixel(random_lyon_pixel(rng, f), f);
+        for (std::size_t k = 0; k < 14; ++k) {
+          ASSERT_EQ(out[14 * (2 * i + 1) + k], want[k]) << "pixel " << i << " field " << k;
+          ASSERT_EQ(out[14 * 2 * i + k], -7) << "row " << 2 * i << " written";
+        }
+      }
+    }
+  }
+  fx::set_kernel_isa(chosen);
+}
+
+// The block path's sine and cosine within their bound of the library's, on 2^20 + 1 points
+// spread over [0, 2π] and at the quadrants' ends.
+TEST(LyonGeometry, SinCosWithinBound) {
+  using lyon_geometry_detail::kSinCosError;
+  const double bound = kSinCosError + 0x1p-53;
+  std::vector<double> xs;
+  for (int i = 0; i <= (1 << 20); ++i) xs.push_back(2 * std::numbers::pi * i / (1 << 20));
+  for (int q = 0; q <= 8; ++q) {
+    const double x = q * std::numbers::pi / 4;
+    xs.insert(xs.end(), {std::nextafter(x, 0.0), x, std::nextafter(x, 7.0)});
+  }
+  double worst = 0;
+  for (const double x : xs) {
+    double s = 0, c = 0;
+    lyon_geometry_detail::sincos(x, s, c);
+    worst = std::max({worst, std::abs(s - std::sin(x)), std::abs(c - std::cos(x))});
+  }
+  EXPECT_LE(worst, bound);
+}
+
+// The block path's unrounded geometry against random_lyon_pixel's, on every instruction set
+// (FMA contraction included): the largest difference over 200,000 pixels stays 2^10 below the
+// bound the rounding check assumes, and few pixels are fragile.
+TEST(LyonGeometry, ApproximationWithinBound) {
+  using namespace lyon_geometry_detail;
+  const fx::Isa chosen = fx::kernel_isa();
+  const std::vector<std::uint64_t> states = GeometryStates(5, 200000);
+  for (const fx::Isa isa : fx::supported_isas()) {
+    fx::set_kernel_isa(isa);
+    for (const char* name : {"default", "fig8_k2"}) {
+      const LyonFormats f = AsLyon(Load(name)).formats();
+      SCOPED_TRACE(fmt::format("{} {}", fx::isa_name(isa), name));
+      double worst = 0;
+      std::size_t fragile = 0;
+      auto chunk = std::make_unique<Chunk>();
+      for (std::size_t first = 0; first < states.size(); first += kChunk) {
+        const std::size_t count = std::min(kChunk, states.size() - first);
+        std::vector<LyonPixel> want;
+        std::vector<double> shin;
+        for (std::size_t i = 0; i < count; ++i) {
+          Rng rng = Rng::from_state(states[first + i]);
+          want.push_back(random_lyon_pixel(rng, f));
+          shin.push_back(want.back().shin);
+        }
+        approximate_geometry(&states[first], shin.data(), count, f.arrangement == 8, *chunk);
+        for (std::size_t i = 0; i < count; ++i) {
+          if (chunk->fragile[i]) {
+            ++fragile;
+            continue;
+          }
+          const Vec3 got[4] = {{chunk->n0[0][i], chunk->n0[1][i], chunk->n0[2][i]},
+                               {chunk->n1[0][i], chunk->n1[1][i], chunk->n1[2][i]},
+                               {chunk->v[0][i], chunk->v[1][i], chunk->v[2][i]},
+                               {chunk->l[0][i], chunk->l[1][i], chunk->l[2][i]}};
+          const Vec3 exact[4] = {want[i].n0, want[i].n1, want[i].v, want[i].l};
+          for (int w = 0; w < 4; ++w) {
+            const Vec3 d = got[w] - exact[w];
+            worst = std::max({worst, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+          }
+        }
+      }
+      EXPECT_LE(worst, kGeometryError * 0x1p-10);
+      EXPECT_LT(fragile, states.size() / 100);
+      std::printf("%s %s: largest difference 2^%.1f, %zu fragile of %zu\n", fx::isa_name(isa), name,
+                  std::log2(worst), fragile, states.size());
+    }
+  }
+  fx::set_kernel_isa(chosen);
+}
+
+// quantize_far against fx::quantize: for values x and every x' within the tolerance of x, either
+// `near` is set or x' quantizes to quantize_far(x); and x exactly on a rounding boundary, or
+// within the tolerance of one, is near. Formats with and without saturation in reach.
+TEST(LyonGeometry, QuantizeFarIsQuantizeAwayFromBoundaries) {
+  using lyon_geometry_detail::quantize_far;
+  Rng rng(1, 2, 3);
+  for (const fx::Format fmt : {fx::Format{true, 1, 10}, fx::Format{true, 0, 7},
+                               fx::Format{false, 1, 14}, fx::Format{true, 1, 22}}) {
+    SCOPED_TRACE(fmt.str());
+    const double scale = std::ldexp(1.0, fmt.frac_bits);
+    const double tol = 0x1p-8;
+    const auto lo = static_cast<double>(fmt.min_raw()), hi = static_cast<double>(fmt.max_raw());
+    const auto q = [fmt](double x) {
+      return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
+    };
+    std::size_t checked = 0;
+    for (int k = 0; k < 200000; ++k) {
+      // Near half-integers often: a boundary plus a few tolerances either way.
+      const double boundary = (std::floor(rng.symmetric() * 2.5 * scale) + 0.5) / scale;
+      const double x =
+          k % 2 == 0 ? rng.symmetric() * 2.5 : boundary + (rng.symmetric() * 4 * tol) / scale;
+      bool near = false;
+      const std::int64_t got = quantize_far(x, scale, tol, lo, hi, near);
+      if (std::abs(x * scale - std::round(x * scale - 0.5) - 0.5) < tol) {
+        ASSERT_TRUE(near) << x;
+      }
+      if (near) continue;
+      ++checked;
+      for (const double e : {-tol, -tol / 2, 0.0, tol / 2, tol}) {
+        ASSERT_EQ(got, q(x + e / scale)) << x << " + " << e << " LSB";
+      }
+    }
+    EXPECT_GT(checked, 100000U);
   }
 }
 

@@ -105,8 +105,10 @@ TEST(FieldRandomTest, ValuesFollowTheDefinition) {
   EXPECT_NEAR(static_cast<double>(corners) / static_cast<double>(draws), 0.125, 0.003);
 }
 
-// fill() on every instruction set this CPU runs: the vectors of one call per vector, for counts
-// that end inside a block and start anywhere; with `skip`, of an Rng that drew that many first.
+// fill() and fill_rows() on every instruction set this CPU runs: the vectors of one call per
+// vector, for counts that end inside a block and start anywhere; with `skip`, of an Rng that drew
+// that many first. fill_rows() puts them in the rows it is given (here every other row, in
+// reverse order) and writes no others.
 TEST(FieldRandomTest, FillIsOneVectorAtATime) {
   const std::vector<Field> fields = fields_of(kFormats);
   const std::size_t n = fields.size();
@@ -122,8 +124,15 @@ TEST(FieldRandomTest, FillIsOneVectorAtATime) {
                                         {12345, 65},
                                         {~std::uint64_t{0} - 2000, 2000}}) {
         for (const std::uint64_t skip : {0, 1, 3}) {
-          std::vector<std::int64_t> got(count * n), want(n);
+          std::vector<std::int64_t> got(count * n), want(n), in_rows(2 * count * n, -99);
           random.fill(seed, first, count, got, skip);
+          std::vector<std::uint64_t> starts;
+          std::vector<std::uint32_t> rows;
+          for (std::size_t v = 0; v < count; ++v) {
+            starts.push_back(Rng::start(seed, kStimulusStream, first + v));
+            rows.push_back(static_cast<std::uint32_t>(2 * (count - 1 - v)));
+          }
+          random.fill_rows(starts, rows, in_rows, skip);
           for (std::size_t v = 0; v < count; ++v) {
             Rng rng(seed, kStimulusStream, first + v);
             for (std::uint64_t k = 0; k < skip; ++k) (void)rng.next();
@@ -132,6 +141,8 @@ TEST(FieldRandomTest, FillIsOneVectorAtATime) {
               ASSERT_EQ(got[v * n + i], want[i])
                   << fx::isa_name(isa) << " seed " << seed << " skip " << skip << " vector "
                   << first + v << " field " << i;
+              ASSERT_EQ(in_rows[rows[v] * n + i], want[i]) << "fill_rows, vector " << first + v;
+              ASSERT_EQ(in_rows[(rows[v] + 1) * n + i], -99) << "fill_rows wrote a gap";
             }
           }
         }

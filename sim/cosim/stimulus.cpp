@@ -45,43 +45,64 @@ void FieldRandom::operator()(Rng& rng, std::span<std::int64_t> in) const {
 }
 
 // operator() for a block of vectors field by field, each loop over the block's generators.
+// Inline: fill() and fill_rows() call it on the kernel instruction set (fx::on_kernel_isa).
+template <class Row>
+[[gnu::always_inline]] inline void FieldRandom::fill_block(const std::uint64_t* state,
+                                                           std::size_t m, Row row,
+                                                           std::int64_t* out,
+                                                           std::uint64_t skip) const {
+  constexpr std::uint64_t kNarrow = std::uint64_t{1} << 32;
+  alignas(64) std::int64_t value[kBlock];
+  // Locals: stores to `out` may alias the members as far as the compiler knows.
+  const std::size_t n = draws_.size();
+  const Draw* const draws = draws_.data();
+  const std::int64_t* const corners = corners_.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Draw d = draws[i];
+    // The loop for a field's span: fields narrower than 32 bits scale with half the products.
+    const auto draw = [&](auto scale) {
+      for (std::size_t v = 0; v < m; ++v) {
+        const std::uint64_t pick = Rng::output(state[v], skip + 2 * i);
+        const std::uint64_t z = Rng::output(state[v], skip + 2 * i + 1);
+        const std::int64_t corner = corners[d.corners_at + Rng::scaled_narrow(z, d.corner_count)];
+        const std::int64_t uniform = d.lo + static_cast<std::int64_t>(scale(z, d.span));
+        value[v] = pick >> 61 == 0 ? corner : uniform;  // scaled(pick, 8) == 0
+      }
+    };
+    if (d.span < kNarrow) {
+      draw(Rng::scaled_narrow);
+    } else {
+      draw(Rng::scaled_halves);
+    }
+    for (std::size_t v = 0; v < m; ++v) out[row(v) * n + i] = value[v];
+  }
+}
+
 void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t count,
                        std::span<std::int64_t> out, std::uint64_t skip) const {
   fx::on_kernel_isa([&] {
-    constexpr std::size_t kBlock = 64;
-    constexpr std::uint64_t kNarrow = std::uint64_t{1} << 32;
     alignas(64) std::uint64_t state[kBlock];
-    alignas(64) std::int64_t value[kBlock];
-    // Locals: stores to `out` may alias the members as far as the compiler knows.
-    const std::size_t n = draws_.size();
-    const Draw* const draws = draws_.data();
-    const std::int64_t* const corners = corners_.data();
-    std::int64_t* const o = out.data();
     for (std::size_t b = 0; b < count; b += kBlock) {
       const std::size_t m = std::min(kBlock, count - b);
       for (std::size_t v = 0; v < m; ++v) {
         state[v] = Rng::start(seed, kStimulusStream, first + b + v);
       }
-      for (std::size_t i = 0; i < n; ++i) {
-        const Draw d = draws[i];
-        // The loop for a field's span: fields narrower than 32 bits scale with half the products.
-        const auto draw = [&](auto scale) {
-          for (std::size_t v = 0; v < m; ++v) {
-            const std::uint64_t pick = Rng::output(state[v], skip + 2 * i);
-            const std::uint64_t z = Rng::output(state[v], skip + 2 * i + 1);
-            const std::int64_t corner =
-                corners[d.corners_at + Rng::scaled_narrow(z, d.corner_count)];
-            const std::int64_t uniform = d.lo + static_cast<std::int64_t>(scale(z, d.span));
-            value[v] = pick >> 61 == 0 ? corner : uniform;  // scaled(pick, 8) == 0
-          }
-        };
-        if (d.span < kNarrow) {
-          draw(Rng::scaled_narrow);
-        } else {
-          draw(Rng::scaled_halves);
-        }
-        for (std::size_t v = 0; v < m; ++v) o[(b + v) * n + i] = value[v];
-      }
+      fill_block(
+          state, m, [b](std::size_t v) { return b + v; }, out.data(), skip);
+    }
+  });
+}
+
+void FieldRandom::fill_rows(std::span<const std::uint64_t> starts,
+                            std::span<const std::uint32_t> rows, std::span<std::int64_t> out,
+                            std::uint64_t skip) const {
+  fx::on_kernel_isa([&] {
+    const std::uint32_t* const r = rows.data();
+    for (std::size_t b = 0; b < starts.size(); b += kBlock) {
+      const std::size_t m = std::min(kBlock, starts.size() - b);
+      fill_block(
+          starts.data() + b, m, [r, b](std::size_t v) { return std::size_t{r[b + v]}; }, out.data(),
+          skip);
     }
   });
 }

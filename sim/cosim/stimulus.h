@@ -38,6 +38,11 @@ class FieldRandom {
   // Rng that has drawn `skip` numbers first (a pipeline that mixes this stimulus with its own).
   void fill(std::uint64_t seed, std::uint64_t first, std::size_t count, std::span<std::int64_t> out,
             std::uint64_t skip = 0) const;
+  // The same for chosen generators: for each k, the vector of the Rng that starts in state
+  // starts[k] (Rng::start's value) into row rows[k] of `out` (a pipeline that fills only some of
+  // a block's vectors from this stimulus).
+  void fill_rows(std::span<const std::uint64_t> starts, std::span<const std::uint32_t> rows,
+                 std::span<std::int64_t> out, std::uint64_t skip = 0) const;
 
  private:
   struct Draw {
@@ -48,6 +53,13 @@ class FieldRandom {
   std::vector<Draw> draws_;
   std::vector<std::int64_t> corners_;
   mutable std::vector<std::uint64_t> z_;  // the Rng's outputs for one vector
+
+  // fill()'s and fill_rows()'s work on up to kBlock generators: vector v from state[v] into row
+  // row(v) of `out`.
+  static constexpr std::size_t kBlock = 64;
+  template <class Row>
+  void fill_block(const std::uint64_t* state, std::size_t m, Row row, std::int64_t* out,
+                  std::uint64_t skip) const;
 };
 
 class Stimulus {

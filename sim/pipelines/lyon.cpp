@@ -14,59 +14,9 @@
 #include "model/lyon.h"
 #include "model/plan.h"
 #include "ref/lyon_float.h"
+#include "sim/pipelines/lyon_geometry.h"
 
 namespace phongsim {
-namespace {
-
-Vec3 random_unit(Rng& rng) {
-  const double z = 2 * rng.uniform() - 1;
-  const double phi = 2 * std::numbers::pi * rng.uniform();
-  const double r = std::sqrt(std::max(0.0, 1 - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
-// Rotates `a` towards a random direction by `angle` (radians).
-Vec3 tilt(Rng& rng, Vec3 a, double angle) {
-  Vec3 t = random_unit(rng);
-  t = t - dot(t, a) * a;  // perpendicular part
-  const double len = length(t);
-  if (len < 1e-9) return a;
-  return std::cos(angle) * a + std::sin(angle) * (t * (1 / len));
-}
-
-}  // namespace
-
-LyonPixel random_lyon_pixel(Rng& rng, const LyonFormats& f) {
-  LyonPixel p;
-  p.n0 = random_unit(rng);
-  p.n1 = tilt(rng, p.n0, rng.uniform() * std::numbers::pi / 2);
-  p.a = rng.uniform();
-  const Vec3 n = normalized(p.n0 * (1 - p.a) + p.n1 * p.a);
-  const double shin_max = fx::to_real(f.shin.max_raw(), f.shin);
-  p.shin = std::max(1.0, std::round(std::exp(rng.uniform() * std::log(shin_max))));
-  const double n_equiv = f.arrangement == 8 ? p.shin * p.shin : p.shin;
-  p.l = random_unit(rng);
-  const Vec3 mirror = 2 * dot(n, p.l) * n - p.l;
-  p.v = tilt(rng, mirror, rng.uniform() * 3 / std::sqrt(n_equiv));
-  return p;
-}
-
-void quantize_lyon_pixel(const LyonPixel& p, const LyonFormats& f, std::span<std::int64_t> out) {
-  const auto q = [](double x, fx::Format fmt) {
-    return fx::quantize(x, fmt, fx::Round::half_even, fx::Overflow::saturate);
-  };
-  const double values[14] = {p.n0.x, p.n0.y, p.n0.z, p.n1.x, p.n1.y, p.n1.z, p.a,
-                             p.v.x,  p.v.y,  p.v.z,  p.l.x,  p.l.y,  p.l.z,  p.shin};
-  for (std::size_t i = 0; i < 14; ++i) {
-    out[i] = q(values[i], i == 6 ? f.a : i == 13 ? f.shin : f.vec);
-  }
-}
-
-std::vector<std::int64_t> quantize_lyon_pixel(const LyonPixel& p, const LyonFormats& f) {
-  std::vector<std::int64_t> raw(14);
-  quantize_lyon_pixel(p, f, raw);
-  return raw;
-}
 
 Stimulus make_lyon_stimulus(const PipelineModel& model) {
   const LyonFormats& f = dynamic_cast<const LyonModel&>(model).formats();
@@ -123,17 +73,35 @@ Stimulus make_lyon_stimulus(const PipelineModel& model) {
     }
     quantize_lyon_pixel(random_lyon_pixel(rng, f), f, in);
   };
-  // The same a block at a time: every vector's bits from FieldRandom's vectorized fill (after
-  // the coin's draw), then the geometry over the half whose coin says so.
-  auto block = [f, bits, n = model.inputs().size()](std::uint64_t seed, std::uint64_t first,
-                                                    std::size_t count,
-                                                    std::span<std::int64_t> out) {
-    bits.fill(seed, first, count, out, 1);
+  // The same a block at a time: each vector's generator and coin (below(2) of its first draw)
+  // vectorized; the generators split by coin without a branch on it; then the bits from
+  // FieldRandom's vectorized fill (after the coin's draw) and the geometry
+  // (random_lyon_pixels, from the generators after the coin).
+  auto block = [f, bits](std::uint64_t seed, std::uint64_t first, std::size_t count,
+                         std::span<std::int64_t> out) {
+    std::vector<std::uint64_t> starts(count), coins(count);
+    fx::on_kernel_isa([&] {
+      std::uint64_t *s = starts.data(), *c = coins.data();  // locals: not reloaded per store
+      for (std::size_t v = 0, n = count; v < n; ++v) {
+        s[v] = Rng::start(seed, kStimulusStream, first + v);
+        c[v] = Rng::scaled_narrow(Rng::output(s[v], 0), 2);
+      }
+    });
+    std::vector<std::uint64_t> bit_starts(count), geometric(count);
+    std::vector<std::uint32_t> bit_rows(count), geometric_rows(count);
+    std::size_t n_bits = 0, n_geometric = 0;
     for (std::size_t v = 0; v < count; ++v) {
-      Rng rng(seed, kStimulusStream, first + v);
-      if (rng.below(2) == 0) continue;
-      quantize_lyon_pixel(random_lyon_pixel(rng, f), f, out.subspan(v * n, n));
+      Rng rng = Rng::from_state(starts[v]);
+      rng.discard(1);
+      bit_starts[n_bits] = starts[v];
+      bit_rows[n_bits] = geometric_rows[n_geometric] = static_cast<std::uint32_t>(v);
+      geometric[n_geometric] = rng.state();
+      n_bits += 1 - coins[v];
+      n_geometric += coins[v];
     }
+    bits.fill_rows(std::span(bit_starts).first(n_bits), std::span(bit_rows).first(n_bits), out, 1);
+    random_lyon_pixels(std::span(geometric).first(n_geometric),
+                       std::span(geometric_rows).first(n_geometric), f, out);
   };
   return Stimulus(model, std::move(directed), random, block);
 }
@@ -149,31 +117,52 @@ InputContract lyon_contract(const LyonFormats& f) {
   const double unit_lo = (1 - tol) * (1 - tol), unit_hi = (1 + tol) * (1 + tol);
   const double np_lo = (std::sqrt(0.5) - tol) * (std::sqrt(0.5) - tol);
   const double shin_one = std::ldexp(1.0, f.shin.frac_bits);
-  const auto len2 = [vs](const std::int64_t* c) {
-    const double x = static_cast<double>(c[0]) * vs, y = static_cast<double>(c[1]) * vs,
-                 z = static_cast<double>(c[2]) * vs;
-    return x * x + y * y + z * z;
-  };
+  constexpr std::size_t n_in = 14;  // LyonModel::inputs: N0, N1, a, V, L, shininess
   return InputContract(
       {"a in [0, 1]", "|N'| in [1/sqrt 2, 1]", "|V| = 1", "|L| = 1", "shininess >= 1"},
-      [=](std::span<const std::int64_t> in) {
-        const std::int64_t* p = in.data();
-        const double a = static_cast<double>(p[6]) * as;
-        if (a < 0 || a > 1) return 0;
-        double np2 = 0;  // N' = (1 - a)·N0 + a·N1, exactly (as reals)
-        for (int c = 0; c < 3; ++c) {
-          const double x =
-              (static_cast<double>(p[c]) * (1 - a) + static_cast<double>(p[3 + c]) * a) * vs;
-          np2 += x * x;
+      InputContract::Check([=](std::span<const std::int64_t> vectors, std::size_t width,
+                               std::span<std::int16_t> out) {
+        if (width != n_in) {
+          throw Error(fmt::format("a Lyon vector has {} fields, not {}", n_in, width));
         }
-        if (np2 < np_lo || np2 > unit_hi) return 1;
-        const double v2 = len2(p + 7);
-        if (v2 < unit_lo || v2 > unit_hi) return 2;
-        const double l2 = len2(p + 10);
-        if (l2 < unit_lo || l2 > unit_hi) return 3;
-        if (static_cast<double>(p[13]) < shin_one) return 4;
-        return InputContract::kIn;
-      });
+        // A block of vectors at a time, field by field (structure of arrays), so that the
+        // clauses' loop vectorizes; every clause evaluated without a branch (random vectors
+        // break them at random), the first one broken kept. The file is compiled without FMA
+        // contraction, so every instruction set computes the same lengths.
+        fx::on_kernel_isa([&] {
+          constexpr std::size_t kBlock = 64;
+          alignas(64) double v[n_in][kBlock];
+          for (std::size_t b = 0; b < out.size(); b += kBlock) {
+            const std::size_t m = std::min(kBlock, out.size() - b);
+            const std::int64_t* const in = vectors.data() + b * n_in;
+            for (std::size_t k = 0; k < m; ++k) {
+              for (std::size_t c = 0; c < n_in; ++c)
+                v[c][k] = static_cast<double>(in[k * n_in + c]);
+            }
+            std::int16_t* const o = out.data() + b;
+            for (std::size_t k = 0; k < m; ++k) {
+              const double a = v[6][k] * as;
+              double np2 = 0;  // N' = (1 - a)·N0 + a·N1, exactly (as reals)
+              for (std::size_t c = 0; c < 3; ++c) {
+                const double x = (v[c][k] * (1 - a) + v[3 + c][k] * a) * vs;
+                np2 += x * x;
+              }
+              const auto len2 = [&](std::size_t first) {
+                const double x = v[first][k] * vs, y = v[first + 1][k] * vs,
+                             z = v[first + 2][k] * vs;
+                return x * x + y * y + z * z;
+              };
+              const double v2 = len2(7), l2 = len2(10);
+              const std::int64_t broken[5] = {(a < 0) | (a > 1), (np2 < np_lo) | (np2 > unit_hi),
+                                              (v2 < unit_lo) | (v2 > unit_hi),
+                                              (l2 < unit_lo) | (l2 > unit_hi), v[13][k] < shin_one};
+              std::int64_t clause = InputContract::kIn;
+              for (int c = 4; c >= 0; --c) clause = broken[c] != 0 ? c : clause;
+              o[k] = static_cast<std::int16_t>(clause);
+            }
+          }
+        });
+      }));
 }
 
 // ---- analysis ----
