@@ -6,6 +6,8 @@
 // the model and the RTL still agree, but the pipeline's accuracy figures do not apply.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -82,5 +84,24 @@ class InputContract {
   std::vector<std::string> clauses_;
   Check check_;
 };
+
+// A batch check's vectors a block at a time, field by field (structure of arrays, so that the
+// clauses' loop over a block's vectors vectorizes): body(v, m, clauses) with v[c][k] field c of
+// the block's vector k as T, m <= kFieldBlock vectors and their m clauses. Call it inside
+// fx::on_kernel_isa, whose flatten inlines it for the kernel's instruction set.
+inline constexpr std::size_t kFieldBlock = 64;
+template <class T, std::size_t kFields, class Body>
+void for_each_field_block(std::span<const std::int64_t> vectors, std::span<std::int16_t> clauses,
+                          Body&& body) {
+  alignas(64) T v[kFields][kFieldBlock];
+  for (std::size_t b = 0; b < clauses.size(); b += kFieldBlock) {
+    const std::size_t m = std::min(kFieldBlock, clauses.size() - b);
+    const std::int64_t* const in = vectors.data() + b * kFields;
+    for (std::size_t k = 0; k < m; ++k) {
+      for (std::size_t c = 0; c < kFields; ++c) v[c][k] = static_cast<T>(in[k * kFields + c]);
+    }
+    body(v, m, clauses.data() + b);
+  }
+}
 
 }  // namespace phongsim

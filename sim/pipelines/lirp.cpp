@@ -68,31 +68,24 @@ InputContract contract(const PipelineModel&, const Config& cfg) {
         // clauses' loop vectorizes; every clause without a branch (random vectors break them at
         // random), the first one broken kept.
         fx::on_kernel_isa([&] {
-          constexpr std::size_t kBlock = 64;
-          alignas(64) std::int64_t v[n_in][kBlock];
-          for (std::size_t b = 0; b < out.size(); b += kBlock) {
-            const std::size_t m = std::min(kBlock, out.size() - b);
-            const std::int64_t* const in = vectors.data() + b * n_in;
-            for (std::size_t k = 0; k < m; ++k) {
-              for (std::size_t c = 0; c < n_in; ++c) v[c][k] = in[k * n_in + c];
-            }
-            std::int16_t* const o = out.data() + b;
-            for (std::size_t k = 0; k < m; ++k) {
-              const std::int64_t a = v[6][k];
-              const std::int64_t a_out = (a < 0) | (a > one_a);
-              std::int64_t p_out = 0, range_out = 0;
-              for (std::size_t c = 0; c < 6; ++c) p_out |= (v[c][k] < p_lo) | (v[c][k] > one_p);
-              for (std::size_t c = 0; c < 3; ++c) {
-                const double p =
-                    static_cast<double>(v[c][k]) * static_cast<double>(one_a) +
-                    static_cast<double>(a) * static_cast<double>(v[3 + c][k] - v[c][k]);
-                range_out |= (p < out_lo) | (p > out_hi);
-              }
-              const std::int64_t from_range = range_out != 0 ? 2 : InputContract::kIn;
-              const std::int64_t from_p = p_out != 0 ? 1 : from_range;
-              o[k] = static_cast<std::int16_t>(a_out != 0 ? 0 : from_p);
-            }
-          }
+          for_each_field_block<std::int64_t, n_in>(
+              vectors, out, [&](const auto& v, std::size_t m, std::int16_t* o) {
+                for (std::size_t k = 0; k < m; ++k) {
+                  const std::int64_t a = v[6][k];
+                  const std::int64_t a_out = (a < 0) | (a > one_a);
+                  std::int64_t p_out = 0, range_out = 0;
+                  for (std::size_t c = 0; c < 6; ++c) p_out |= (v[c][k] < p_lo) | (v[c][k] > one_p);
+                  for (std::size_t c = 0; c < 3; ++c) {
+                    const double p =
+                        static_cast<double>(v[c][k]) * static_cast<double>(one_a) +
+                        static_cast<double>(a) * static_cast<double>(v[3 + c][k] - v[c][k]);
+                    range_out |= (p < out_lo) | (p > out_hi);
+                  }
+                  const std::int64_t from_range = range_out != 0 ? 2 : InputContract::kIn;
+                  const std::int64_t from_p = p_out != 0 ? 1 : from_range;
+                  o[k] = static_cast<std::int16_t>(a_out != 0 ? 0 : from_p);
+                }
+              });
         });
       }));
 }

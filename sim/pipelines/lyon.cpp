@@ -130,37 +130,30 @@ InputContract lyon_contract(const LyonFormats& f) {
         // break them at random), the first one broken kept. The file is compiled without FMA
         // contraction, so every instruction set computes the same lengths.
         fx::on_kernel_isa([&] {
-          constexpr std::size_t kBlock = 64;
-          alignas(64) double v[n_in][kBlock];
-          for (std::size_t b = 0; b < out.size(); b += kBlock) {
-            const std::size_t m = std::min(kBlock, out.size() - b);
-            const std::int64_t* const in = vectors.data() + b * n_in;
-            for (std::size_t k = 0; k < m; ++k) {
-              for (std::size_t c = 0; c < n_in; ++c)
-                v[c][k] = static_cast<double>(in[k * n_in + c]);
-            }
-            std::int16_t* const o = out.data() + b;
-            for (std::size_t k = 0; k < m; ++k) {
-              const double a = v[6][k] * as;
-              double np2 = 0;  // N' = (1 - a)·N0 + a·N1, exactly (as reals)
-              for (std::size_t c = 0; c < 3; ++c) {
-                const double x = (v[c][k] * (1 - a) + v[3 + c][k] * a) * vs;
-                np2 += x * x;
-              }
-              const auto len2 = [&](std::size_t first) {
-                const double x = v[first][k] * vs, y = v[first + 1][k] * vs,
-                             z = v[first + 2][k] * vs;
-                return x * x + y * y + z * z;
-              };
-              const double v2 = len2(7), l2 = len2(10);
-              const std::int64_t broken[5] = {(a < 0) | (a > 1), (np2 < np_lo) | (np2 > unit_hi),
-                                              (v2 < unit_lo) | (v2 > unit_hi),
-                                              (l2 < unit_lo) | (l2 > unit_hi), v[13][k] < shin_one};
-              std::int64_t clause = InputContract::kIn;
-              for (int c = 4; c >= 0; --c) clause = broken[c] != 0 ? c : clause;
-              o[k] = static_cast<std::int16_t>(clause);
-            }
-          }
+          for_each_field_block<double, n_in>(
+              vectors, out, [&](const auto& v, std::size_t m, std::int16_t* o) {
+                for (std::size_t k = 0; k < m; ++k) {
+                  const double a = v[6][k] * as;
+                  double np2 = 0;  // N' = (1 - a)·N0 + a·N1, exactly (as reals)
+                  for (std::size_t c = 0; c < 3; ++c) {
+                    const double x = (v[c][k] * (1 - a) + v[3 + c][k] * a) * vs;
+                    np2 += x * x;
+                  }
+                  const auto len2 = [&](std::size_t first) {
+                    const double x = v[first][k] * vs, y = v[first + 1][k] * vs,
+                                 z = v[first + 2][k] * vs;
+                    return x * x + y * y + z * z;
+                  };
+                  const double v2 = len2(7), l2 = len2(10);
+                  const std::int64_t broken[5] = {
+                      (a < 0) | (a > 1), (np2 < np_lo) | (np2 > unit_hi),
+                      (v2 < unit_lo) | (v2 > unit_hi), (l2 < unit_lo) | (l2 > unit_hi),
+                      v[13][k] < shin_one};
+                  std::int64_t clause = InputContract::kIn;
+                  for (int c = 4; c >= 0; --c) clause = broken[c] != 0 ? c : clause;
+                  o[k] = static_cast<std::int16_t>(clause);
+                }
+              });
         });
       }));
 }

@@ -212,11 +212,8 @@ void random_lyon_pixels(std::span<const std::uint64_t> states, std::span<const s
     const std::size_t count = std::min(kChunk, states.size() - first);
     const std::uint64_t* st = states.data() + first;
     // The shininess as random_lyon_pixel computes it (the library's exp and log).
-    for (std::size_t i = 0; i < count; ++i) {
-      Rng rng = Rng::from_state(st[i]);
-      rng.discard(kShin);
-      shin[i] = std::max(1.0, std::round(std::exp(rng.uniform() * log_shin_max)));
-    }
+    for (std::size_t i = 0; i < count; ++i)
+      shin[i] = std::max(1.0, std::round(std::exp(uniform(st[i], kShin) * log_shin_max)));
     if (fast) {
       approximate_geometry(st, shin, count, f.arrangement == 8, ch);
       quantize_chunk(ch, count, f.vec, tol, raw, near);
@@ -231,9 +228,7 @@ void random_lyon_pixels(std::span<const std::uint64_t> states, std::span<const s
       // Fields in the model's input order: N0, N1, a, V, L, shininess.
       constexpr int kField[12] = {0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12};
       for (int k = 0; k < 12; ++k) row[kField[k]] = raw[k][i];
-      Rng rng = Rng::from_state(st[i]);
-      rng.discard(kA);
-      row[6] = fx::quantize(rng.uniform(), f.a, fx::Round::half_even, fx::Overflow::saturate);
+      row[6] = fx::quantize(uniform(st[i], kA), f.a, fx::Round::half_even, fx::Overflow::saturate);
       row[13] = fx::quantize(shin[i], f.shin, fx::Round::half_even, fx::Overflow::saturate);
     }
   }
