@@ -222,9 +222,13 @@ int run(BenchCli c) {
   j["bare_rtl"]["cycles_per_s"] = json_number(r.bare_rtl.cycles_per_s);
   j["cosim"] = rate_json(r.cosim);
   j["cosim_jobs"] = nullptr;
+  j["bare_rtl_jobs"] = nullptr;
   if (r.jobs > 1) {
     j["cosim_jobs"] = rate_json(r.cosim_jobs);
     j["cosim_jobs"]["jobs"] = r.jobs;
+    j["bare_rtl_jobs"] = rate_json(r.bare_rtl_jobs);
+    j["bare_rtl_jobs"]["cycles_per_s"] = json_number(r.bare_rtl_jobs.cycles_per_s);
+    j["bare_rtl_jobs"]["jobs"] = r.jobs;
   }
   j["icarus"] = nullptr;
   if (r.icarus) {
@@ -241,6 +245,7 @@ int run(BenchCli c) {
       {"cosim_ceiling_rtl", json_number(r.cosim_ceiling())},
       {"jobs_cosim", r.jobs > 1 ? ratio(r.cosim_jobs.outputs_per_s, r.cosim.outputs_per_s)
                                 : nlohmann::ordered_json(nullptr)},
+      {"jobs_bare_rtl", r.jobs > 1 ? json_number(r.bare_jobs_ratio()) : nlohmann::ordered_json(nullptr)},
       {"verilator_icarus", r.icarus ? ratio(r.rtl.cycles_per_s, r.icarus->cycles_per_s)
                                     : nlohmann::ordered_json(nullptr)}};
   json.write(j);

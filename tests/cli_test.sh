@@ -96,12 +96,13 @@ import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["pipeline"] == sys.argv[2] and r["config"] == "default" and r["vectors"] == 5000, r
 assert r["isa"] in ("baseline", "avx2", "avx512"), r
-for part in ("model", "native", "rtl", "bare_rtl", "cosim", "cosim_jobs", "icarus"):
+for part in ("model", "native", "rtl", "bare_rtl", "bare_rtl_jobs", "cosim", "cosim_jobs", "icarus"):
     assert r[part]["vectors_per_s"] > 0 and r[part]["outputs_per_s"] > 0, (part, r)
+assert r["bare_rtl_jobs"]["jobs"] == 2 and r["bare_rtl_jobs"]["cycles_per_s"] > 0, r
 assert 1 <= r["icarus"]["vectors"] <= 5000 and r["icarus"]["cycles_per_s"] > 0, r
 assert r["stimulus"]["vectors_per_s"] > 0, r
 for ratio in ("model_native", "model_rtl", "rtl_bare_rtl", "cosim_rtl", "jobs_cosim",
-              "verilator_icarus"):
+              "jobs_bare_rtl", "verilator_icarus"):
     assert r["ratios"][ratio] > 0, (ratio, r)
 assert 0 < r["ratios"]["cosim_ceiling_rtl"] < 1, r
 EOT

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <thread>
 
 #include "base/error.h"
 #include "sim/cosim/cosim.h"
@@ -105,6 +106,20 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   BareStats b;
   DutPtr bare = subject.make_dut();
   bare->bare_load(inputs, n_in);
+  // The machine's own scaling, a yardstick for --jobs: `jobs` bare loops at once, each on its
+  // thread and its DUT, against one. Two virtual CPUs of a shared host need not be two cores'
+  // worth.
+  std::vector<DutPtr> bares;
+  if (jobs > 1) {
+    bares.push_back(std::move(bare));
+    for (unsigned k = 1; k < jobs; ++k) {
+      bares.push_back(subject.make_dut());
+      bares.back()->bare_load(inputs, n_in);
+    }
+    bare = nullptr;
+  }
+  double bare_jobs_s = kNone;
+  std::uint64_t bare_jobs_cycles = 0;
   // Stimulus, model and native kernel are timed a chunk at a time: each chunk made again into
   // one small buffer, the model and the kernel reading it right after, as a co-simulation's
   // scoreboard does with its batches (chunk_ends). Writing or
@@ -161,8 +176,22 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
                               vectors, h.message));
     }
     start = std::chrono::steady_clock::now();
-    b = bare->bare_run();
+    b = (bares.empty() ? bare : bares.front())->bare_run();
     fastest(bare_s, seconds_since(start));
+    if (!bares.empty()) {
+      std::vector<BareStats> each(bares.size());
+      start = std::chrono::steady_clock::now();
+      {
+        std::vector<std::jthread> threads;
+        for (std::size_t k = 1; k < bares.size(); ++k) {
+          threads.emplace_back([&, k] { each[k] = bares[k]->bare_run(); });
+        }
+        each[0] = bares[0]->bare_run();
+      }
+      fastest(bare_jobs_s, seconds_since(start));
+      bare_jobs_cycles = 0;
+      for (const BareStats& e : each) bare_jobs_cycles += e.cycles;
+    }
 
     const auto passed = [](const CosimReport& c) {
       if (!c.passed) {
@@ -196,7 +225,11 @@ BenchReport bench(const CosimSubject& subject, std::uint64_t vectors, const Nati
   r.bare_rtl = rate(b.inputs, b.outputs, bare_s);
   r.bare_rtl.cycles_per_s = static_cast<double>(b.cycles) / bare_s;
   r.cosim = rate(cosim_vectors, cosim_outputs, cosim_s);
-  if (jobs > 1) r.cosim_jobs = rate(cosim_vectors, cosim_outputs, jobs_s);
+  if (jobs > 1) {
+    r.cosim_jobs = rate(cosim_vectors, cosim_outputs, jobs_s);
+    r.bare_rtl_jobs = rate(b.inputs * jobs, b.outputs * jobs, bare_jobs_s);
+    r.bare_rtl_jobs.cycles_per_s = static_cast<double>(bare_jobs_cycles) / bare_jobs_s;
+  }
 
   if (icarus) {
     const double cycles_per_vector =
@@ -228,6 +261,10 @@ double BenchReport::cosim_ceiling() const {
   return rtl_s / (rtl_s + 1 / stimulus.vectors_per_s + 1 / model.vectors_per_s);
 }
 
+double BenchReport::bare_jobs_ratio() const {
+  return bare_rtl_jobs.cycles_per_s / bare_rtl.cycles_per_s;
+}
+
 std::string BenchReport::table() const {
   const auto row = [](std::string_view what, const BenchRate& b, std::string_view extra = "") {
     return fmt::format("  {:<22} {:>12.0f} {:>12.0f}{}\n", what, b.vectors_per_s, b.outputs_per_s,
@@ -245,7 +282,11 @@ std::string BenchReport::table() const {
              fmt::format("   ({:.0f} cycles/s)", icarus->cycles_per_s));
   }
   s += row("co-simulation", cosim);
-  if (jobs > 1) s += row(fmt::format("co-simulation, {} jobs", jobs), cosim_jobs);
+  if (jobs > 1) {
+    s += row(fmt::format("bare loop, {} at once", jobs), bare_rtl_jobs,
+             fmt::format("   ({:.0f} cycles/s)", bare_rtl_jobs.cycles_per_s));
+    s += row(fmt::format("co-simulation, {} jobs", jobs), cosim_jobs);
+  }
   const auto ratio = [](std::string_view what, double x) {
     return fmt::format("  {:<22} {:>25.2f}x\n", what, x);
   };
@@ -258,6 +299,7 @@ std::string BenchReport::table() const {
   if (jobs > 1) {
     s +=
         ratio(fmt::format("{} jobs / 1 job", jobs), cosim_jobs.outputs_per_s / cosim.outputs_per_s);
+    s += ratio(fmt::format("  {} bare loops / 1", jobs), bare_jobs_ratio());
   }
   if (!native_note.empty()) s += "  " + native_note + "\n";
   return s;

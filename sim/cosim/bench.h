@@ -2,7 +2,8 @@
 // vectors: the model (its batch API), a hand-written native kernel of the default configuration
 // (the model's headroom), the Verilated RTL through the harness (no checking), the same top in a
 // bare Verilator loop (the harness's headroom), and the full co-simulation; in vectors and outputs
-// per second, with their ratios; and the same RTL in Icarus Verilog through the same harness, on
+// per second, with their ratios (with `jobs` > 1: the co-simulation with that many workers, and as
+// many bare loops at once, the machine's own scaling); and the same RTL in Icarus Verilog through the same harness, on
 // fewer vectors (Icarus is slow), for the Verilator/Icarus ratio. Each part but Icarus is timed
 // in three rounds, the fastest kept. A benchmark prints numbers; no test asserts a timing.
 #pragma once
@@ -41,6 +42,7 @@ struct BenchReport {
   BenchRate cosim;                  // model, RTL and scoreboard, one worker
   unsigned jobs = 1;                // > 1: co-simulation with that many workers too
   BenchRate cosim_jobs;
+  BenchRate bare_rtl_jobs;  // `jobs` bare loops at once, each on its own thread (all together)
   std::string native_note;  // why there is no native figure, or what it was checked against
   // The RTL in Icarus Verilog through the harness, on the first icarus_vectors bench vectors
   // (about kIcarusCycles cycles' worth); absent when not measured.
@@ -52,6 +54,10 @@ struct BenchReport {
   // 1/rtl / (1/rtl + 1/stimulus + 1/model)): what the co-simulation's bookkeeping is measured
   // against, and its floor when the goal is above it.
   [[nodiscard]] double cosim_ceiling() const;
+
+  // How the machine scales the RTL alone: `jobs` bare loops at once against one (cycles per
+  // second); the yardstick for the co-simulation's jobs / 1 job.
+  [[nodiscard]] double bare_jobs_ratio() const;
 
   [[nodiscard]] std::string table() const;  // ratios are of outputs per second (RTL: cycles)
 };
