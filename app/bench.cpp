@@ -245,7 +245,8 @@ int run(BenchCli c) {
       {"cosim_ceiling_rtl", json_number(r.cosim_ceiling())},
       {"jobs_cosim", r.jobs > 1 ? ratio(r.cosim_jobs.outputs_per_s, r.cosim.outputs_per_s)
                                 : nlohmann::ordered_json(nullptr)},
-      {"jobs_bare_rtl", r.jobs > 1 ? json_number(r.bare_jobs_ratio()) : nlohmann::ordered_json(nullptr)},
+      {"jobs_bare_rtl",
+       r.jobs > 1 ? json_number(r.bare_jobs_ratio()) : nlohmann::ordered_json(nullptr)},
       {"verilator_icarus", r.icarus ? ratio(r.rtl.cycles_per_s, r.icarus->cycles_per_s)
                                     : nlohmann::ordered_json(nullptr)}};
   json.write(j);

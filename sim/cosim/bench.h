@@ -3,9 +3,10 @@
 // (the model's headroom), the Verilated RTL through the harness (no checking), the same top in a
 // bare Verilator loop (the harness's headroom), and the full co-simulation; in vectors and outputs
 // per second, with their ratios (with `jobs` > 1: the co-simulation with that many workers, and as
-// many bare loops at once, the machine's own scaling); and the same RTL in Icarus Verilog through the same harness, on
-// fewer vectors (Icarus is slow), for the Verilator/Icarus ratio. Each part but Icarus is timed
-// in three rounds, the fastest kept. A benchmark prints numbers; no test asserts a timing.
+// many bare loops at once, the machine's own scaling); and the same RTL in Icarus Verilog through
+// the same harness, on fewer vectors (Icarus is slow), for the Verilator/Icarus ratio. Each part
+// but Icarus is timed in three rounds, the fastest kept. A benchmark prints numbers; no test
+// asserts a timing.
 #pragma once
 
 #include <cstdint>
