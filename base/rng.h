@@ -9,6 +9,10 @@
 
 namespace phongsim {
 
+// Some static functions below also take GCC vectors (FieldRandom::fill). They are inline, so GCC's
+// note that a vector argument's calling convention differs between instruction sets is moot.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
 class Rng {
  public:
   Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t index)
@@ -32,11 +36,13 @@ class Rng {
   }
 
   // The same without an object, for loops over many generators that the compiler vectorizes:
-  // the state Rng(seed, stream, index) starts from, and output k of fill() from a state.
+  // the state Rng(seed, stream, index) starts from, and output k of fill() from a state. The
+  // static functions below take std::uint64_t or a GCC vector of them (one generator per lane).
   static std::uint64_t start(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
     return mix(seed ^ mix(stream + 0x51ed2701f3a5c7b9ULL) ^ mix(~index));
   }
-  static std::uint64_t output(std::uint64_t state, std::uint64_t k) {
+  template <class U>
+  static U output(U state, std::uint64_t k) {
     return finalize(state + (k + 1) * kGamma);
   }
 
@@ -47,16 +53,19 @@ class Rng {
     return static_cast<std::uint64_t>((static_cast<unsigned __int128>(z) * n) >> 64);
   }
   // scaled() from 32-bit halves instead of a 128-bit product: a loop of it vectorizes.
-  static std::uint64_t scaled_halves(std::uint64_t z, std::uint64_t n) {
+  template <class U>
+  static U scaled_halves(U z, std::uint64_t n) {
     constexpr std::uint64_t kLow = 0xffffffffU;
-    const std::uint64_t zl = z & kLow, zh = z >> 32, nl = n & kLow, nh = n >> 32;
-    const std::uint64_t ll = zl * nl, lh = zl * nh, hl = zh * nl;
-    const std::uint64_t mid = (ll >> 32) + (lh & kLow) + (hl & kLow);
+    const U zl = z & kLow, zh = z >> 32;
+    const std::uint64_t nl = n & kLow, nh = n >> 32;
+    const U ll = zl * nl, lh = zl * nh, hl = zh * nl;
+    const U mid = (ll >> 32) + (lh & kLow) + (hl & kLow);
     return zh * nh + (lh >> 32) + (hl >> 32) + (mid >> 32);
   }
 
   // scaled() for n < 2^32: two 32 x 32-bit products (one vector instruction each).
-  static std::uint64_t scaled_narrow(std::uint64_t z, std::uint64_t n) {
+  template <class U>
+  static U scaled_narrow(U z, std::uint64_t n) {
     return ((z >> 32) * n + (((z & 0xffffffffU) * n) >> 32)) >> 32;
   }
 
@@ -73,7 +82,8 @@ class Rng {
   static std::uint64_t mix(std::uint64_t x) { return finalize(x + kGamma); }
   explicit Rng(std::uint64_t raw_state) : state_(raw_state) {}
   static constexpr std::uint64_t kGamma = 0x9e3779b97f4a7c15ULL;
-  static std::uint64_t finalize(std::uint64_t z) {
+  template <class U>
+  static U finalize(U z) {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
@@ -81,6 +91,7 @@ class Rng {
 
   std::uint64_t state_;
 };
+#pragma GCC diagnostic pop
 
 // Stream identifiers, so stimulus and the two stall patterns never share random numbers.
 enum RngStream : std::uint64_t { kStimulusStream = 1, kSourceStream = 2, kSinkStream = 3 };

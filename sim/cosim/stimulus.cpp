@@ -1,7 +1,9 @@
 #include "sim/cosim/stimulus.h"
 
 #include <algorithm>
+#include <cstring>
 
+#include "base/error.h"
 #include "model/plan.h"
 
 namespace phongsim {
@@ -24,6 +26,7 @@ std::vector<std::int64_t> corner_values(fx::Format fmt) {
 FieldRandom::FieldRandom(const std::vector<Field>& fields) : z_(2 * fields.size()) {
   for (const auto& f : fields) {
     const std::vector<std::int64_t> c = corner_values(f.fmt);
+    if (c.size() > 16) throw Error("FieldRandom: more corner values than fill() permutes");
     draws_.push_back({f.fmt.min_raw(),
                       static_cast<std::uint64_t>(f.fmt.max_raw() - f.fmt.min_raw()) + 1,
                       corners_.size(), c.size()});
@@ -44,14 +47,31 @@ void FieldRandom::operator()(Rng& rng, std::span<std::int64_t> in) const {
   }
 }
 
+// Vectors of the generators for fill_block's permute path, one per lane. Every function on them
+// is inlined into a kernel (fx::on_kernel_isa's flatten), so none passes one in a call: the
+// warning that their calling convention differs between instruction sets does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+using Lanes = std::uint64_t __attribute__((vector_size(64)));
+using SignedLanes = std::int64_t __attribute__((vector_size(64)));
+
 // operator() for a block of vectors field by field, each loop over the block's generators.
 // Inline: fill() and fill_rows() call it on the kernel instruction set (fx::on_kernel_isa).
-template <class Row>
+// kPermute (AVX-512 only): the loop eight generators at a time as GCC vectors, each field's
+// corners (at most 16) in two registers, picked by one two-register permute (vpermt2q) per
+// eight generators; otherwise a table load per value, which the compiler turns into a gather
+// emulated one value at a time (on AVX-512 the permute makes the stimulus about 15 % faster;
+// on AVX2 and baseline, where the permute is emulated too, about 15-25 % slower).
+template <bool kPermute, class Row>
 [[gnu::always_inline]] inline void FieldRandom::fill_block(const std::uint64_t* state,
                                                            std::size_t m, Row row,
                                                            std::int64_t* out,
                                                            std::uint64_t skip) const {
   constexpr std::uint64_t kNarrow = std::uint64_t{1} << 32;
+  constexpr std::size_t kLanes = sizeof(Lanes) / sizeof(std::uint64_t);
+  static_assert(kBlock % kLanes == 0);
+  // The permute path's generators padded to whole vectors (the padding's values are never stored).
+  alignas(64) std::uint64_t padded[kBlock] = {};
+  if constexpr (kPermute) std::copy(state, state + m, padded);
   alignas(64) std::int64_t value[kBlock];
   // Locals: stores to `out` may alias the members as far as the compiler knows.
   const std::size_t n = draws_.size();
@@ -60,19 +80,44 @@ template <class Row>
   for (std::size_t i = 0; i < n; ++i) {
     const Draw d = draws[i];
     // The loop for a field's span: fields narrower than 32 bits scale with half the products.
-    const auto draw = [&](auto scale) {
-      for (std::size_t v = 0; v < m; ++v) {
-        const std::uint64_t pick = Rng::output(state[v], skip + 2 * i);
-        const std::uint64_t z = Rng::output(state[v], skip + 2 * i + 1);
-        const std::int64_t corner = corners[d.corners_at + Rng::scaled_narrow(z, d.corner_count)];
-        const std::int64_t uniform = d.lo + static_cast<std::int64_t>(scale(z, d.span));
-        value[v] = pick >> 61 == 0 ? corner : uniform;  // scaled(pick, 8) == 0
+    const auto draw = [&](auto narrow) {
+      const auto scale = [&](auto z) {
+        if constexpr (narrow)
+          return Rng::scaled_narrow(z, d.span);
+        else
+          return Rng::scaled_halves(z, d.span);
+      };
+      if constexpr (kPermute) {
+        alignas(64) std::int64_t table[2 * kLanes] = {};
+        std::copy(corners + d.corners_at, corners + d.corners_at + d.corner_count, table);
+        SignedLanes low, high;
+        std::memcpy(&low, table, sizeof low);
+        std::memcpy(&high, table + kLanes, sizeof high);
+        for (std::size_t v = 0; v < m; v += kLanes) {
+          Lanes s;
+          std::memcpy(&s, padded + v, sizeof s);
+          const Lanes pick = Rng::output(s, skip + 2 * i);
+          const Lanes z = Rng::output(s, skip + 2 * i + 1);
+          const auto at = reinterpret_cast<SignedLanes>(Rng::scaled_narrow(z, d.corner_count));
+          const SignedLanes corner = __builtin_shuffle(low, high, at);
+          const SignedLanes uniform = d.lo + reinterpret_cast<SignedLanes>(scale(z));
+          const SignedLanes chosen = (pick >> 61) == 0 ? corner : uniform;
+          std::memcpy(value + v, &chosen, sizeof chosen);
+        }
+      } else {
+        for (std::size_t v = 0; v < m; ++v) {
+          const std::uint64_t pick = Rng::output(state[v], skip + 2 * i);
+          const std::uint64_t z = Rng::output(state[v], skip + 2 * i + 1);
+          const std::int64_t corner = corners[d.corners_at + Rng::scaled_narrow(z, d.corner_count)];
+          const std::int64_t uniform = d.lo + static_cast<std::int64_t>(scale(z));
+          value[v] = pick >> 61 == 0 ? corner : uniform;  // scaled(pick, 8) == 0
+        }
       }
     };
     if (d.span < kNarrow) {
-      draw(Rng::scaled_narrow);
+      draw(std::true_type{});
     } else {
-      draw(Rng::scaled_halves);
+      draw(std::false_type{});
     }
     for (std::size_t v = 0; v < m; ++v) out[row(v) * n + i] = value[v];
   }
@@ -80,6 +125,7 @@ template <class Row>
 
 void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t count,
                        std::span<std::int64_t> out, std::uint64_t skip) const {
+  const bool permute = fx::kernel_isa() == fx::Isa::avx512;
   fx::on_kernel_isa([&] {
     alignas(64) std::uint64_t state[kBlock];
     for (std::size_t b = 0; b < count; b += kBlock) {
@@ -87,8 +133,12 @@ void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t coun
       for (std::size_t v = 0; v < m; ++v) {
         state[v] = Rng::start(seed, kStimulusStream, first + b + v);
       }
-      fill_block(
-          state, m, [b](std::size_t v) { return b + v; }, out.data(), skip);
+      const auto row = [b](std::size_t v) { return b + v; };
+      if (permute) {
+        fill_block<true>(state, m, row, out.data(), skip);
+      } else {
+        fill_block<false>(state, m, row, out.data(), skip);
+      }
     }
   });
 }
@@ -96,13 +146,17 @@ void FieldRandom::fill(std::uint64_t seed, std::uint64_t first, std::size_t coun
 void FieldRandom::fill_rows(std::span<const std::uint64_t> starts,
                             std::span<const std::uint32_t> rows, std::span<std::int64_t> out,
                             std::uint64_t skip) const {
+  const bool permute = fx::kernel_isa() == fx::Isa::avx512;
   fx::on_kernel_isa([&] {
     const std::uint32_t* const r = rows.data();
     for (std::size_t b = 0; b < starts.size(); b += kBlock) {
       const std::size_t m = std::min(kBlock, starts.size() - b);
-      fill_block(
-          starts.data() + b, m, [r, b](std::size_t v) { return std::size_t{r[b + v]}; }, out.data(),
-          skip);
+      const auto row = [r, b](std::size_t v) { return std::size_t{r[b + v]}; };
+      if (permute) {
+        fill_block<true>(starts.data() + b, m, row, out.data(), skip);
+      } else {
+        fill_block<false>(starts.data() + b, m, row, out.data(), skip);
+      }
     }
   });
 }

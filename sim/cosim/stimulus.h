@@ -57,7 +57,7 @@ class FieldRandom {
   // fill()'s and fill_rows()'s work on up to kBlock generators: vector v from state[v] into row
   // row(v) of `out`.
   static constexpr std::size_t kBlock = 64;
-  template <class Row>
+  template <bool kPermute, class Row>
   void fill_block(const std::uint64_t* state, std::size_t m, Row row, std::int64_t* out,
                   std::uint64_t skip) const;
 };
