@@ -26,11 +26,13 @@ std::vector<std::int64_t> corner_values(fx::Format fmt) {
 FieldRandom::FieldRandom(const std::vector<Field>& fields) : z_(2 * fields.size()) {
   for (const auto& f : fields) {
     const std::vector<std::int64_t> c = corner_values(f.fmt);
-    if (c.size() > 16) throw Error("FieldRandom: more corner values than fill() permutes");
+    if (c.size() > kCornerSlots)
+      throw Error("FieldRandom: more corner values than fill() permutes");
     draws_.push_back({f.fmt.min_raw(),
                       static_cast<std::uint64_t>(f.fmt.max_raw() - f.fmt.min_raw()) + 1,
                       corners_.size(), c.size()});
     corners_.insert(corners_.end(), c.begin(), c.end());
+    corners_.resize(corners_.size() + kCornerSlots - c.size());  // fill_block's permute loads 16
   }
 }
 
@@ -59,8 +61,8 @@ using SignedLanes = std::int64_t __attribute__((vector_size(64)));
 // kPermute (AVX-512 only): the loop eight generators at a time as GCC vectors, each field's
 // corners (at most 16) in two registers, picked by one two-register permute (vpermt2q) per
 // eight generators; otherwise a table load per value, which the compiler turns into a gather
-// emulated one value at a time (on AVX-512 the permute makes the stimulus about 15 % faster;
-// on AVX2 and baseline, where the permute is emulated too, about 15-25 % slower).
+// emulated one value at a time (LIRP's stimulus: about 20 % faster with the permute on AVX-512,
+// 13-27 % slower on baseline and AVX2, where the permute is emulated too; docs/performance.md).
 template <bool kPermute, class Row>
 [[gnu::always_inline]] inline void FieldRandom::fill_block(const std::uint64_t* state,
                                                            std::size_t m, Row row,
@@ -69,9 +71,13 @@ template <bool kPermute, class Row>
   constexpr std::uint64_t kNarrow = std::uint64_t{1} << 32;
   constexpr std::size_t kLanes = sizeof(Lanes) / sizeof(std::uint64_t);
   static_assert(kBlock % kLanes == 0);
+  static_assert(kCornerSlots == 2 * kLanes);
   // The permute path's generators padded to whole vectors (the padding's values are never stored).
-  alignas(64) std::uint64_t padded[kBlock] = {};
-  if constexpr (kPermute) std::copy(state, state + m, padded);
+  alignas(64) std::uint64_t padded[kBlock];
+  if constexpr (kPermute) {
+    std::copy(state, state + m, padded);
+    std::fill(padded + m, padded + kBlock, 0);
+  }
   alignas(64) std::int64_t value[kBlock];
   // Locals: stores to `out` may alias the members as far as the compiler knows.
   const std::size_t n = draws_.size();
@@ -88,11 +94,9 @@ template <bool kPermute, class Row>
           return Rng::scaled_halves(z, d.span);
       };
       if constexpr (kPermute) {
-        alignas(64) std::int64_t table[2 * kLanes] = {};
-        std::copy(corners + d.corners_at, corners + d.corners_at + d.corner_count, table);
         SignedLanes low, high;
-        std::memcpy(&low, table, sizeof low);
-        std::memcpy(&high, table + kLanes, sizeof high);
+        std::memcpy(&low, corners + d.corners_at, sizeof low);
+        std::memcpy(&high, corners + d.corners_at + kLanes, sizeof high);
         for (std::size_t v = 0; v < m; v += kLanes) {
           Lanes s;
           std::memcpy(&s, padded + v, sizeof s);

@@ -51,7 +51,8 @@ class FieldRandom {
     std::size_t corners_at = 0, corner_count = 0;  // into corners_
   };
   std::vector<Draw> draws_;
-  std::vector<std::int64_t> corners_;
+  std::vector<std::int64_t> corners_;  // each field's, padded to kCornerSlots
+  static constexpr std::size_t kCornerSlots = 16;
   mutable std::vector<std::uint64_t> z_;  // the Rng's outputs for one vector
 
   // fill()'s and fill_rows()'s work on up to kBlock generators: vector v from state[v] into row
