@@ -269,6 +269,43 @@ TEST_P(PlanTest, PlanEqualsStagePath) {
   fx::set_kernel_isa(chosen);
 }
 
+// The block transposes (fx::to_fields, fx::from_fields) against their definition on every
+// instruction set: every field count up to 17 (one, two and three groups of eight, full and
+// partial) and every block length, writing nothing outside the transactions and fields named.
+TEST(Transpose, FieldsAreTheDefinitionOnEveryIsa) {
+  constexpr std::int64_t kGuard = 0x5a5a5a5a5a5a5a5a;
+  constexpr std::size_t kMaxFields = 17, kPad = 9;
+  Rng rng(7, kStimulusStream, 0);
+  const fx::Isa chosen = fx::kernel_isa();
+  for (const fx::Isa isa : fx::supported_isas()) {
+    fx::set_kernel_isa(isa);
+    for (std::size_t n = 1; n <= kMaxFields; ++n) {
+      for (std::size_t m = 0; m <= fx::kBlock; ++m) {
+        const std::string at =
+            fmt::format("{} fields, {} transactions, {}", n, m, fx::isa_name(isa));
+        std::vector<std::int64_t> src(kPad + n * m + kPad);
+        for (auto& x : src) x = static_cast<std::int64_t>(rng.next());
+        alignas(64) std::int64_t soa[kMaxFields + 1][fx::kBlock];
+        std::fill(&soa[0][0], &soa[0][0] + (kMaxFields + 1) * fx::kBlock, kGuard);
+        fx::to_fields(src.data() + kPad, n, m, soa);
+        for (std::size_t f = 0; f <= kMaxFields; ++f) {
+          for (std::size_t k = 0; k < fx::kBlock; ++k) {
+            const std::int64_t want = f < n && k < m ? src[kPad + k * n + f] : kGuard;
+            ASSERT_EQ(soa[f][k], want) << at << ": to_fields, field " << f << ", row " << k;
+          }
+        }
+        std::vector<std::int64_t> dst(src.size(), kGuard);
+        fx::from_fields(soa, n, m, dst.data() + kPad);
+        for (std::size_t i = 0; i < dst.size(); ++i) {
+          const bool inside = i >= kPad && i < kPad + n * m;
+          ASSERT_EQ(dst[i], inside ? src[i] : kGuard) << at << ": from_fields, value " << i;
+        }
+      }
+    }
+  }
+  fx::set_kernel_isa(chosen);
+}
+
 TEST(KernelIsa, TheWidestSupportedByDefaultAndOnlySupportedOnesChosen) {
   const std::vector<fx::Isa> isas = fx::supported_isas();
   ASSERT_FALSE(isas.empty());

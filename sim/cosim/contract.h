@@ -15,6 +15,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "model/plan.h"
+
 namespace phongsim {
 
 // How many vectors a run met inside and outside the contract, and, per clause, how many broke
@@ -89,18 +91,23 @@ class InputContract {
 // clauses' loop over a block's vectors vectorizes): body(v, m, clauses) with v[c][k] field c of
 // the block's vector k as T, m <= kFieldBlock vectors and their m clauses. Call it inside
 // fx::on_kernel_isa, whose flatten inlines it for the kernel's instruction set.
-inline constexpr std::size_t kFieldBlock = 64;
+inline constexpr std::size_t kFieldBlock = fx::kBlock;
 template <class T, std::size_t kFields, class Body>
 void for_each_field_block(std::span<const std::int64_t> vectors, std::span<std::int16_t> clauses,
                           Body&& body) {
-  alignas(64) T v[kFields][kFieldBlock];
+  alignas(64) std::int64_t raw[kFields][kFieldBlock];
+  alignas(64) T converted[std::is_same_v<T, std::int64_t> ? 1 : kFields][kFieldBlock];
   for (std::size_t b = 0; b < clauses.size(); b += kFieldBlock) {
     const std::size_t m = std::min(kFieldBlock, clauses.size() - b);
-    const std::int64_t* const in = vectors.data() + b * kFields;
-    for (std::size_t k = 0; k < m; ++k) {
-      for (std::size_t c = 0; c < kFields; ++c) v[c][k] = static_cast<T>(in[k * kFields + c]);
+    fx::to_fields(vectors.data() + b * kFields, kFields, m, raw);
+    if constexpr (std::is_same_v<T, std::int64_t>) {
+      body(raw, m, clauses.data() + b);
+    } else {
+      for (std::size_t c = 0; c < kFields; ++c) {
+        for (std::size_t k = 0; k < m; ++k) converted[c][k] = static_cast<T>(raw[c][k]);
+      }
+      body(converted, m, clauses.data() + b);
     }
-    body(v, m, clauses.data() + b);
   }
 }
 
