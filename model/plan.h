@@ -193,6 +193,7 @@ struct AtLeastOne {
   [[nodiscard]] bool operator()(std::int64_t raw) const { return (raw >> shift) != 0; }
 };
 
+// Transactions per block of a batch kernel.
 inline constexpr std::size_t kBlock = 64;
 
 // ---- Transposes between m <= kBlock transactions stored back to back (n raw fields each) and
@@ -293,7 +294,6 @@ inline void from_fields(const std::int64_t (*soa)[kBlock], std::size_t n, std::s
 // Runs a structure-of-arrays kernel over n transactions stored back to back (NIn raw inputs
 // each), writing NOut outputs each to `out`: blocks of kBlock transactions are transposed in,
 // computed by kernel(in_fields, out_fields, count) and transposed out.
-
 template <std::size_t NIn, std::size_t NOut, class Kernel>
 void for_each_block(const std::int64_t* in, std::int64_t* out, std::size_t n, Kernel&& kernel) {
   alignas(64) std::int64_t soa_in[NIn][kBlock];

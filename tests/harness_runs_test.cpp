@@ -321,8 +321,16 @@ class PassthroughDut final : public phongsim::RtlDut {
 
 TEST_F(Cosim, AnOutputInTheCycleItsVectorIsAcceptedIsUnexpected) {
   const phongsim::CosimSubject subject{
-      "lirp",    cfg_, *model_,
-      stimulus_, true, [&] { return DutPtr(new PassthroughDut(formats_), DutDeleter{}); }};
+      .pipeline = "lirp",
+      .cfg = cfg_,
+      .model = *model_,
+      .stimulus = stimulus_,
+      .independent_vectors = true,
+      .make_dut = [&] { return DutPtr(new PassthroughDut(formats_), DutDeleter{}); },
+      .rtl_label = {},
+      .rtl_options = {},
+      .shard_vectors = 0,
+      .contract = {}};
   const CosimReport r = phongsim::cosim(subject, Options());
   EXPECT_FALSE(r.passed);
   EXPECT_EQ(r.failure_kind, "unexpected output");

@@ -117,12 +117,12 @@ TEST(FieldRandomTest, FillIsOneVectorAtATime) {
   for (const fx::Isa isa : fx::supported_isas()) {
     fx::set_kernel_isa(isa);
     for (const std::uint64_t seed : {1, 7}) {
-      for (const auto [first, count] : {std::pair<std::uint64_t, std::size_t>{0, 0},
-                                        {0, 1},
-                                        {3, 63},
-                                        {100, 64},
-                                        {12345, 65},
-                                        {~std::uint64_t{0} - 2000, 2000}}) {
+      for (const auto& [first, count] : {std::pair<std::uint64_t, std::size_t>{0, 0},
+                                         {0, 1},
+                                         {3, 63},
+                                         {100, 64},
+                                         {12345, 65},
+                                         {~std::uint64_t{0} - 2000, 2000}}) {
         for (const std::uint64_t skip : {0, 1, 3}) {
           std::vector<std::int64_t> got(count * n), want(n), in_rows(2 * count * n, -99);
           random.fill(seed, first, count, got, skip);
@@ -172,7 +172,7 @@ TEST(StimulusTest, VectorsAreOneVectorAtATime) {
     for (std::size_t i = 0; i < in.size(); ++i) in[i] = static_cast<std::int64_t>(seed + index + i);
   };
   for (const Stimulus& stimulus : {Stimulus(model, directed), Stimulus(model, directed, own)}) {
-    for (const auto [first, count] :
+    for (const auto& [first, count] :
          {std::pair<std::uint64_t, std::size_t>{0, 2}, {1, 100}, {3, 70}, {50, 0}}) {
       std::vector<std::int64_t> got(3 * count), want(3);
       stimulus.vectors(5, first, count, got);
