@@ -96,13 +96,13 @@ template <class T, std::size_t kFields, class Body>
 void for_each_field_block(std::span<const std::int64_t> vectors, std::span<std::int16_t> clauses,
                           Body&& body) {
   alignas(64) std::int64_t raw[kFields][kFieldBlock];
-  alignas(64) T converted[std::is_same_v<T, std::int64_t> ? 1 : kFields][kFieldBlock];
   for (std::size_t b = 0; b < clauses.size(); b += kFieldBlock) {
     const std::size_t m = std::min(kFieldBlock, clauses.size() - b);
     fx::to_fields(vectors.data() + b * kFields, kFields, m, raw);
     if constexpr (std::is_same_v<T, std::int64_t>) {
       body(raw, m, clauses.data() + b);
     } else {
+      alignas(64) T converted[kFields][kFieldBlock];
       for (std::size_t c = 0; c < kFields; ++c) {
         for (std::size_t k = 0; k < m; ++k) converted[c][k] = static_cast<T>(raw[c][k]);
       }
