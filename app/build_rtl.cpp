@@ -17,7 +17,7 @@ struct BuildCli {
 };
 
 int run(const BuildCli& c) {
-  check_distinct({{"--json", c.json}, {"--config", c.target.config}});
+  check_outputs({{"--json", c.json}}, c.target.inputs());
   JsonOutput json(c.json);
   std::vector<Loaded> loaded;
   std::vector<RtlDesign> designs;
@@ -40,7 +40,15 @@ int run(const BuildCli& c) {
   }
   std::vector<const PipelineModel*> models;
   for (const Loaded& l : loaded) models.push_back(l.model.get());
-  const std::vector<RtlPlugin> plugins = build_rtl(designs, models, stderr);
+  // --no-build: build nothing; say where each plugin is, or refuse the first one not built.
+  std::vector<RtlPlugin> plugins;
+  if (c.target.no_build) {
+    for (std::size_t i = 0; i < designs.size(); ++i) {
+      plugins.push_back(locate_rtl(designs[i], *models[i], RtlBuild::never, stderr));
+    }
+  } else {
+    plugins = build_rtl(designs, models, stderr);
+  }
   nlohmann::ordered_json j = json_document("build-rtl");
   j["plugins"] = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < plugins.size(); ++i) {
@@ -64,7 +72,8 @@ void add_build_rtl(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "build-rtl",
       "Verilate a configuration's RTL into the plugin cache (keyed by content: nothing is "
-      "rebuilt that did not change), or every built-in configuration's with --all");
+      "rebuilt that did not change), or every built-in configuration's with --all; with "
+      "--no-build, only check that it is built");
   c->target.add_options(*cmd);
   cmd->add_flag("--all", c->all, "every configuration in configs/, in one parallel build");
   cmd->add_option("--json", c->json,

@@ -14,6 +14,7 @@
 #include "base/error.h"
 #include "base/paths.h"
 #include "base/process.h"
+#include "base/text.h"
 #include "sim/cosim/icarus_dut.h"
 
 namespace phongsim::cli {
@@ -147,6 +148,27 @@ void Target::check_x_init() const {
   }
 }
 
+std::vector<std::pair<std::string, fs::path>> Target::inputs() const {
+  std::vector<std::pair<std::string, fs::path>> in{{"--config", config}, {"--rtl-plugin", plugin}};
+  for (const std::string& c : configs) in.emplace_back("--config", c);
+  const auto hdl = [](const fs::path& f) {
+    static const std::vector<std::string> kinds = {".sv", ".v", ".svh", ".vh", ".svi", ".inc"};
+    return std::find(kinds.begin(), kinds.end(), f.extension().string()) != kinds.end();
+  };
+  std::error_code ec;
+  for (const fs::path p : rtl) {
+    in.emplace_back("--rtl", p);
+    const bool folder = fs::is_directory(p, ec);
+    const fs::path dir = folder ? p : p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->is_regular_file(ec) && (folder || hdl(it->path()))) {
+        in.emplace_back("--rtl", it->path());
+      }
+    }
+  }
+  return in;
+}
+
 std::string Target::x_init_mode() const {
   if (simulator == "icarus") return "x";
   return x_init;
@@ -173,17 +195,6 @@ RtlDesign design_of(const Loaded& l, const Target& t) {
   return rtl_design(*l.pipeline, l.cfg, std::move(files), t.top);
 }
 
-namespace {
-
-std::string quoted(const std::string& s) {
-  if (s.find_first_of(" \t\"'\\$") == std::string::npos) return s;
-  std::string q = "'";
-  for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-}  // namespace
-
 Rtl rtl_of(const Loaded& l, const Target& t) {
   t.check_x_init();
   RtlDesign design = design_of(l, t);
@@ -196,7 +207,7 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     const PipelineModel* model = l.model.get();
     rtl.make_dut = [library, model]() { return library->create(*model); };
     rtl.label = fmt::format("plugin {}", t.plugin);
-    rtl.options = " --rtl-plugin " + quoted(t.plugin);
+    rtl.options = " --rtl-plugin " + shell_quoted(t.plugin);
     return rtl;
   }
   if (t.simulator == "icarus") {
@@ -206,8 +217,9 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     rtl.label = t.rtl.empty() ? fmt::format("built-in {} in Icarus Verilog", design.top)
                               : fmt::format("{} from --rtl in Icarus Verilog", design.top);
     rtl.options = " --simulator icarus";
-    for (const auto& p : t.rtl) rtl.options += (&p == &t.rtl.front() ? " --rtl " : " ") + quoted(p);
-    if (!t.top.empty()) rtl.options += " --top " + quoted(t.top);
+    for (const auto& p : t.rtl)
+      rtl.options += (&p == &t.rtl.front() ? " --rtl " : " ") + shell_quoted(p);
+    if (!t.top.empty()) rtl.options += " --top " + shell_quoted(t.top);
     return rtl;
   }
   RtlPlugin plugin;
@@ -219,14 +231,15 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
                   : design.coverage_toggle ? "; coverage"
                                            : "; line coverage") +
       (design.x_init == XInit::random ? fmt::format("; x-init random, seed {}", t.x_seed) : "");
+  const std::string key = plugin.key.substr(0, 16);  // as the cache folder names it
   if (t.rtl.empty()) {
-    rtl.label = fmt::format("built-in {} ({}{})", design.top, plugin.key, x_init);
+    rtl.label = fmt::format("built-in {} ({}{})", design.top, key, x_init);
   } else {
     rtl.label = fmt::format("{} from --rtl, {} file{} ({}{})", design.top, design.files.size(),
-                            design.files.size() == 1 ? "" : "s", plugin.key, x_init);
+                            design.files.size() == 1 ? "" : "s", key, x_init);
     rtl.options = " --rtl";
-    for (const auto& p : t.rtl) rtl.options += " " + quoted(p);
-    if (!t.top.empty()) rtl.options += " --top " + quoted(t.top);
+    for (const auto& p : t.rtl) rtl.options += " " + shell_quoted(p);
+    if (!t.top.empty()) rtl.options += " --top " + shell_quoted(t.top);
   }
   if (design.x_init == XInit::random) {
     rtl.options += fmt::format(" --x-init random --x-seed {}", t.x_seed);
@@ -236,11 +249,15 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
 
 CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus) {
   Rtl rtl = rtl_of(l, t);
-  return CosimSubject{std::string(l.pipeline->name), l.cfg, *l.model, stimulus,
-                      l.pipeline->independent_vectors, std::move(rtl.make_dut),
-                      std::move(rtl.label), std::move(rtl.options),
-                      // The default run (about a million outputs) makes 16 shards.
-                      l.pipeline->default_vectors / 16, l.pipeline->contract(*l.model, l.cfg)};
+  return CosimSubject{std::string(l.pipeline->name),
+                      l.cfg,
+                      *l.model,
+                      stimulus,
+                      l.pipeline->independent_vectors,
+                      std::move(rtl.make_dut),
+                      std::move(rtl.label),
+                      std::move(rtl.options),
+                      l.pipeline->contract(*l.model, l.cfg)};
 }
 
 std::optional<fs::path> inside(const fs::path& path, const fs::path& dir) {

@@ -82,6 +82,11 @@ struct Target {
   // Error for --x-seed without --x-init random, and for --x-init random with --simulator icarus
   // or --rtl-plugin.
   void check_x_init() const;
+  // What the command reads, each with the option that names it, for check_outputs(): the
+  // configuration(s), --rtl-plugin, and --rtl's files and folders with what is in them (a
+  // folder's files, and the SystemVerilog files and headers beside a given file, which an
+  // `include may read).
+  [[nodiscard]] std::vector<std::pair<std::string, std::filesystem::path>> inputs() const;
   // "zero", "random" or, for Icarus (four-state), "x"; and the seed, 0 when there is none.
   [[nodiscard]] std::string x_init_mode() const;
   [[nodiscard]] std::uint64_t x_init_seed() const { return x_init == "random" ? x_seed : 0; }

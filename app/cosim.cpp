@@ -101,6 +101,11 @@ nlohmann::ordered_json to_json(const CosimReport& r, double seconds, const Targe
       {"outputs", r.outputs},
       {"mismatches", r.mismatches},
       {"cycles", r.cycles},
+      {"duts", r.duts},
+      {"longest_since_reset", {{"vectors", r.longest_vectors}, {"outputs", r.longest_outputs}}},
+      {"reset_every", r.options.reset_every != 0 ? nlohmann::ordered_json(r.options.reset_every)
+                                                 : nlohmann::ordered_json(nullptr)},
+      {"drain_cycles", r.drain_cycles},
       {"source_idle", r.options.source.str()},
       {"backpressure", r.options.sink.str()},
       {"throughput",
@@ -154,10 +159,27 @@ int run(CosimCli& c) {
         "--source-idle and --backpressure");
   }
   const WaveFormat wave = c.trace.empty() ? WaveFormat::fst : wave_format(c.trace);
-  std::vector<std::pair<std::string, std::filesystem::path>> paths{
+  const std::vector<std::pair<std::string, std::filesystem::path>> outputs{
       {"--json", c.json}, {"--junit", c.junit}, {"--trace", c.trace}};
-  for (const auto& config : configs) paths.emplace_back("--config", config);
-  check_distinct(paths);
+  const std::vector<std::pair<std::string, std::filesystem::path>> inputs = c.target.inputs();
+  check_outputs(outputs, inputs);
+  if (!c.coverage.empty()) {  // a folder of outputs: nothing read or written elsewhere in it
+    for (const auto& [name, path] : outputs) {
+      if (!path.empty() && path != "-" &&
+          (same_destination(path, c.coverage) || inside(path, c.coverage))) {
+        throw Error(fmt::format("{} {} lies in the --coverage folder {}, which phongsim fills",
+                                name, path.string(), c.coverage));
+      }
+    }
+    for (const auto& [name, path] : inputs) {
+      if (!path.empty() && (same_destination(path, c.coverage) || inside(path, c.coverage))) {
+        throw Error(
+            fmt::format("{} {} lies in the --coverage folder {}: an output folder may "
+                        "not hold what the command reads",
+                        name, path.string(), c.coverage));
+      }
+    }
+  }
   // Every configuration and its RTL first, so bad input stops the command before any run.
   std::vector<Loaded> loaded;
   std::vector<Target> targets;
@@ -363,9 +385,14 @@ void add_cosim(CLI::App& app, Action& action) {
             "stall the patterns make)",
             kMaxTimeout);
   cmd->add_option("--jobs", c->options.jobs,
-                  "workers (threads) sharing a run's shards; the results do not depend on it")
+                  "workers (threads): the vectors go to N DUTs, each taking a contiguous 1/N of "
+                  "the stream from reset (the verdict states the longest sequence since reset)")
       ->check(CLI::Range(1U, 256U))
       ->capture_default_str();
+  add_count(*cmd, "--reset-every", c->options.reset_every,
+            "a fresh DUT (from reset) every N vectors, at group starts; the workers share those "
+            "runs and --jobs then changes nothing but the time (0: no resets but one per worker)",
+            kMaxVectors);
   cmd->add_option("--json", c->json,
                   "write the results as JSON (docs/json.md: every run of the matrix); - is "
                   "standard output");

@@ -20,8 +20,9 @@ struct EvalCli {
 };
 
 int run_eval(const EvalCli& c) {
-  check_distinct(
-      {{"--in", c.in}, {"--out", c.out}, {"--json", c.json}, {"--config", c.target.config}});
+  std::vector<std::pair<std::string, std::filesystem::path>> inputs = c.target.inputs();
+  inputs.emplace_back("--in", c.in);
+  check_outputs({{"--out", c.out}, {"--json", c.json}}, inputs);
   const Loaded l = load(c.target);
   DutFactory make_dut;
   if (c.backend == "rtl") {

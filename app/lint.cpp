@@ -15,7 +15,7 @@ struct LintCli {
 
 int run(const LintCli& c) {
   const Target& t = c.target;
-  check_distinct({{"--json", c.json}, {"--config", t.config}});
+  check_outputs({{"--json", c.json}}, t.inputs());
   JsonOutput json(c.json);
   const Loaded l = load(t);
   const RtlDesign d = design_of(l, t);

@@ -150,6 +150,20 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "phongsim: error: {} (see phongsim --help)\n", e.what());
     return 2;
   }
+  // An empty value names nothing: `--json ''` would otherwise quietly write no file.
+  for (const CLI::App* cmd = &app; cmd != nullptr;) {
+    for (const CLI::Option* opt : cmd->get_options()) {
+      for (const std::string& value : opt->results()) {
+        if (value.empty() && opt->get_expected_min() > 0) {
+          fmt::print(stderr, "phongsim: error: {} is given an empty value (see phongsim --help)\n",
+                     opt->get_name());
+          return 2;
+        }
+      }
+    }
+    const auto subs = cmd->get_subcommands();
+    cmd = subs.empty() ? nullptr : subs.front();
+  }
   try {
     return action();
   } catch (const std::bad_alloc&) {

@@ -143,7 +143,7 @@ int run(const SynthCli& c) {
   if (c.check && c.ice40) throw Error("--check and --ice40 exclude each other");
   if (c.all) return run_all(c);
   if (c.check && !c.json.empty()) throw Error("--check and --json exclude each other");
-  check_distinct({{"--json", c.json}, {"--config", c.target.config}});
+  check_outputs({{"--json", c.json}}, c.target.inputs());
   JsonOutput json(c.json);
   const Loaded l = load(c.target);
   const RtlDesign d = design_of(l, c.target);

@@ -1,6 +1,6 @@
 // Small file helpers shared by the plugin cache, synthesis, configurations, scenes, meshes and
 // sweeps: a whole file as text (the one read_file of the tree), and the content hash their caches
-// are keyed by.
+// and the plugins' records of their sources are keyed by (file_util.cpp).
 #pragma once
 
 #include <fmt/format.h>
@@ -38,21 +38,26 @@ inline std::string read_file(const std::filesystem::path& path, std::string_view
   return s.str();
 }
 
-// FNV-1a, 64 bit, over a sequence of fields: a cache key, not a security boundary.
+// SHA-256 (OpenSSL) over a sequence of fields: what a verdict rests on (RTL plugin keys, the
+// files a plugin was built from, the synthesis cache, sweep plans), so an adversary cannot make
+// two contents share a key. Each field is framed by its length, so ("ab","c") and ("a","bc")
+// differ.
 class ContentHash {
  public:
-  void add(std::string_view bytes) {
-    for (const unsigned char c : bytes) {
-      h_ ^= c;
-      h_ *= 0x100000001b3ULL;
-    }
-    h_ ^= 0xff;  // field separator, so ("ab","c") and ("a","bc") differ
-    h_ *= 0x100000001b3ULL;
-  }
-  [[nodiscard]] std::string hex() const { return fmt::format("{:016x}", h_); }
+  ContentHash();
+  ~ContentHash();
+  ContentHash(const ContentHash&) = delete;
+  ContentHash& operator=(const ContentHash&) = delete;
+  void add(std::string_view bytes);
+  // 64 hex digits. The hash stays usable: more fields may be added after.
+  [[nodiscard]] std::string hex() const;
 
  private:
-  std::uint64_t h_ = 0xcbf29ce484222325ULL;
+  void* ctx_;  // EVP_MD_CTX
 };
+
+// The SHA-256 of one file's bytes, 64 hex digits (what `sha256sum` prints); Error when it cannot
+// be read.
+[[nodiscard]] std::string file_hash(const std::filesystem::path& path);
 
 }  // namespace phongsim

@@ -64,32 +64,6 @@ std::string claim_key(const fs::path& target) {
   return (ec ? fs::absolute(target) : canon).lexically_normal().string();
 }
 
-// A temporary file in the temp directory, registered before it exists.
-std::pair<fs::path, int> temp_in_tmpdir(TempRegistration& registration) {
-  std::string pattern =
-      (fs::temp_directory_path() / fmt::format("phongsim-out-{}-XXXXXX", getpid())).string();
-  sigset_t all, old;
-  sigfillset(&all);
-  sigprocmask(SIG_BLOCK, &all, &old);
-  const int fd = mkostemp(pattern.data(), O_CLOEXEC);
-  const int err = errno;
-  if (fd >= 0) {
-    try {
-      registration = TempRegistration(pattern);
-    } catch (...) {
-      close(fd);
-      unlink(pattern.c_str());
-      sigprocmask(SIG_SETMASK, &old, nullptr);
-      throw;
-    }
-  }
-  sigprocmask(SIG_SETMASK, &old, nullptr);
-  if (fd < 0) {
-    throw Error(fmt::format("cannot create a temporary file {}: {}", pattern, std::strerror(err)));
-  }
-  return {pattern, fd};
-}
-
 bool write_all(int fd, const char* data, std::size_t size) {
   while (size > 0) {
     const ssize_t n = write(fd, data, size);
@@ -163,39 +137,52 @@ OutputFile::OutputFile(fs::path path) : path_(std::move(path)) {
     claim_ = key;
   }
 
+  const auto release_claim = [&] {
+    if (!claim_.empty()) claims().erase(claim_);
+  };
+  if (fd_ == 1 || fd_ == 2) {
+    file_ = fd_ == 1 ? stdout : stderr;
+    return;
+  }
   int fd = -1;
-  if (fd_ >= 0 || in_place_) {
-    std::tie(temp_, fd) = temp_in_tmpdir(registration_);
+  if (fd_ >= 0) {
+    fd = fcntl(fd_, F_DUPFD_CLOEXEC, 3);
+  } else if (in_place_) {
+    fd = open(target_.c_str(), O_WRONLY | O_CLOEXEC);  // a FIFO waits for its reader here
   } else {
     sweep_stale_siblings(target_);
-    temp_ = target_;
-    temp_ += temp_suffix();
-    registration_ = TempRegistration(temp_);
-    fd = open(temp_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd < 0) {
+    try {
+      temp_.emplace(temp_prefix_beside(target_), OwnedTemp::Kind::file);
+    } catch (const Error&) {
       const int err = errno;
-      claims().erase(claim_);
+      release_claim();
       throw fail(std::strerror(err));
     }
-    if (existing) (void)fchmod(fd, keep_mode);
+    if (existing) (void)fchmod(temp_->fd(), keep_mode);
+    fd = fcntl(temp_->fd(), F_DUPFD_CLOEXEC, 3);  // the temporary keeps its own, locked
   }
-  file_ = fdopen(fd, "w+b");
+  if (fd >= 0) file_ = fdopen(fd, "wb");
   if (file_ == nullptr) {
     const int err = errno;
-    close(fd);
-    unlink(temp_.c_str());
-    claims().erase(claim_);
+    if (fd >= 0) close(fd);
+    temp_.reset();
+    release_claim();
     throw fail(std::strerror(err));
   }
+  owns_file_ = true;
 }
 
 OutputFile::~OutputFile() {
-  if (file_ != nullptr) std::fclose(file_);
-  if (!committed_ && !temp_.empty()) {
-    std::error_code ec;
-    fs::remove(temp_, ec);
-  }
+  if (owns_file_ && file_ != nullptr) std::fclose(file_);
+  temp_.reset();  // removes an uncommitted temporary
   if (!claim_.empty()) claims().erase(claim_);
+}
+
+const fs::path& OutputFile::temp_path() {
+  if (!temp_) {  // a stream: a file to copy into it on commit
+    temp_.emplace(fs::temp_directory_path() / "phongsim-out-", OwnedTemp::Kind::file);
+  }
+  return temp_->path();
 }
 
 void OutputFile::commit() {
@@ -203,43 +190,39 @@ void OutputFile::commit() {
     return Error(fmt::format("cannot write {}: {}", path_.string(), std::strerror(err)));
   };
   if (committed_) return;
+  if (stream() && temp_) {  // a writer used temp_path(): copy that file into the stream
+    const int in = open(temp_->path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (in < 0) throw fail(errno);
+    std::fflush(file_);
+    char buf[65536];
+    bool copied = true;
+    while (copied) {
+      const ssize_t n = read(in, buf, sizeof buf);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        copied = n == 0;
+        break;
+      }
+      copied = write_all(fileno(file_), buf, static_cast<std::size_t>(n));
+    }
+    const int err = errno;
+    close(in);
+    if (!copied) throw fail(err);
+  }
   const bool ok = std::fflush(file_) == 0 && std::ferror(file_) == 0;
   if (!ok) throw fail(errno);
-  if (fd_ < 0 && !in_place_) {
+  if (owns_file_) {
     // fsync would make the rename durable across a crash; not worth its cost here: a crash
     // leaves the old file or the new one, and the stale temporary is swept later.
-    if (std::fclose(file_) != 0) {
-      file_ = nullptr;
-      throw fail(errno);
-    }
+    const int closed = std::fclose(file_);
     file_ = nullptr;
-    if (std::rename(temp_.c_str(), target_.c_str()) != 0) throw fail(errno);
-    committed_ = true;
-    return;
+    if (closed != 0) throw fail(errno);
   }
-  // In place: copy the content to the descriptor or the FIFO/device.
-  int out = fd_;
-  if (fd_ == 1) std::fflush(stdout);
-  if (fd_ == 2) std::fflush(stderr);
-  if (fd_ < 0) {
-    out = open(target_.c_str(), O_WRONLY | O_CLOEXEC);  // a FIFO waits for its reader here
-    if (out < 0) throw fail(errno);
+  if (!stream()) {
+    if (std::rename(temp_->path().c_str(), target_.c_str()) != 0) throw fail(errno);
+    temp_->release();
   }
-  const int in = fileno(file_);
-  bool written = lseek(in, 0, SEEK_SET) == 0;
-  char buf[65536];
-  while (written) {
-    const ssize_t n = read(in, buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      written = n == 0;
-      break;
-    }
-    written = write_all(out, buf, static_cast<std::size_t>(n));
-  }
-  const int err = errno;
-  if (fd_ < 0) close(out);
-  if (!written) throw fail(err);
+  temp_.reset();
   committed_ = true;
 }
 
@@ -259,6 +242,20 @@ void check_distinct(const std::vector<std::pair<std::string, fs::path>>& named) 
         throw Error(fmt::format("{} and {} name the same file {}", named[i].first, named[j].first,
                                 named[j].second.string()));
       }
+    }
+  }
+}
+
+void check_outputs(const std::vector<std::pair<std::string, fs::path>>& outputs,
+                   const std::vector<std::pair<std::string, fs::path>>& inputs) {
+  check_distinct(outputs);
+  for (const auto& [out_name, out] : outputs) {
+    for (const auto& [in_name, in] : inputs) {
+      if (out.empty() || in.empty() || !same_destination(out, in)) continue;
+      throw Error(
+          fmt::format("{} {} is also an input ({} {}): an output never replaces what the "
+                      "command reads",
+                      out_name, out.string(), in_name, in.string()));
     }
   }
 }

@@ -3,17 +3,20 @@
 //
 // OutputFile — one output. Where it goes depends on what the destination is:
 //  - `-` is standard output; `/dev/stdout`, `/dev/stderr`, `/dev/fd/N` and `/proc/self/fd/N` are
-//    that descriptor (written through, whatever it is: a pipe, a terminal, a redirected file);
+//    that descriptor (whatever it is: a pipe, a terminal, a redirected file);
 //  - a symbolic link is followed: its target is written (atomically, as below), the link stays;
 //  - a regular file, or a name that does not exist yet, is written atomically: to a temporary
-//    sibling `<path>.tmp.<pid>` that commit() renames over it (an existing file keeps its
-//    permissions);
+//    sibling `<path>.phongsim-tmp-XXXXXX` (base/temporaries.h) that commit() renames over it (an
+//    existing file keeps its permissions); a failure before commit() leaves the destination as
+//    it was;
 //  - a FIFO or a character device (/dev/null, a terminal) is written in place, never replaced;
 //  - a directory, block device or socket is refused.
-// Until commit() the content is held in a temporary file (for the in-place kinds: one in the
-// temp directory, copied to the destination on commit), registered with base/temporaries.h so
-// that a signal removes it; a failure before commit() writes nothing. Opening checks the
-// destination, so a command can refuse an unwritable output before its work.
+// The descriptors, FIFOs and devices are streams: get() writes to them as the content comes (a
+// FIFO is opened here, waiting for its reader), with no copy anywhere; what a failure leaves in a
+// stream cannot be taken back. A writer that needs a path (a waveform, a figure drawn by another
+// program) asks temp_path(): for a stream, a temporary file in the temp directory, copied into
+// the stream by commit(). Opening checks the destination, so a command can refuse an
+// unwritable output before its work.
 //
 // OutputSet — several files that belong together (a render, a sweep plan): complete or absent
 // as a set, named by a manifest written last.
@@ -23,6 +26,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -41,9 +45,10 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
 
   [[nodiscard]] std::FILE* get() const { return file_; }
-  // Where the content goes until commit (for writers that need a path, e.g. a waveform or a
-  // figure drawn by another program): get()'s file.
-  [[nodiscard]] const std::filesystem::path& temp_path() const { return temp_; }
+  // A path to write the content to instead of get() (for writers that need one, e.g. a waveform
+  // or a figure drawn by another program): the atomic temporary, or for a stream a temporary file
+  // copied into it by commit().
+  [[nodiscard]] const std::filesystem::path& temp_path();
   // The destination as given.
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
   // True when the destination is this process's standard output (`-`, /dev/stdout, ...): a
@@ -53,13 +58,15 @@ class OutputFile {
   void commit();  // throws Error when the data cannot be flushed or moved into place
 
  private:
-  std::filesystem::path path_;    // as given
-  std::filesystem::path target_;  // symbolic links resolved (atomic and in-place kinds)
-  std::filesystem::path temp_;
-  TempRegistration registration_;
+  [[nodiscard]] bool stream() const { return fd_ >= 0 || in_place_; }
+
+  std::filesystem::path path_;     // as given
+  std::filesystem::path target_;   // symbolic links resolved (atomic and in-place kinds)
+  std::optional<OwnedTemp> temp_;  // the atomic kind's sibling; a stream's temp_path() file
   std::FILE* file_ = nullptr;
-  int fd_ = -1;            // written through this descriptor (stdout, /dev/fd/N)
-  bool in_place_ = false;  // a FIFO or character device
+  int fd_ = -1;             // written through this descriptor (stdout, /dev/fd/N)
+  bool in_place_ = false;   // a FIFO or character device
+  bool owns_file_ = false;  // file_ is ours to close (not stdout/stderr)
   bool committed_ = false;
   std::string claim_;  // this process's claim on the destination (no two outputs to one place)
 };
@@ -71,6 +78,12 @@ class OutputFile {
 // Throws Error("<option a> and <option b> name the same file <path>") when two of the named
 // outputs (or an output and an input) are one destination. Empty paths are skipped.
 void check_distinct(const std::vector<std::pair<std::string, std::filesystem::path>>& named);
+
+// The same for a command's outputs among themselves and against each of its inputs (symbolic
+// links and ".." resolved): an output may never replace what the command reads. Inputs are not
+// compared with each other.
+void check_outputs(const std::vector<std::pair<std::string, std::filesystem::path>>& outputs,
+                   const std::vector<std::pair<std::string, std::filesystem::path>>& inputs);
 
 // Files in one directory that appear together or not at all. add() opens each as an OutputFile
 // (its temporary beside it, sub-directories made as needed); commit() renames them all into

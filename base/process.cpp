@@ -28,7 +28,8 @@ WaitHook& wait_hook() {
 
 void set_wait_hook(WaitHook hook) { wait_hook() = std::move(hook); }
 
-ProcessResult run_process(const std::vector<std::string>& argv, const std::filesystem::path& log) {
+ProcessResult run_process(const std::vector<std::string>& argv, const std::filesystem::path& log,
+                          const std::filesystem::path& cwd) {
   ProcessResult result;
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
@@ -46,6 +47,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
                                      O_WRONLY | O_CREAT | O_APPEND, 0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   }
+  if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
   // The child leads a process group of its own, so that phongsim's signal handler can stop it
   // and everything it starts (base/temporaries.h); signals stay blocked until it is registered.
   posix_spawnattr_t attr;

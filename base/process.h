@@ -15,10 +15,11 @@ struct ProcessResult {
   std::string out;     // stdout and stderr together, when captured
 };
 
-// Runs argv[0] (searched in PATH) with the given arguments. Output goes to `log` when given,
-// otherwise it is captured into the result.
+// Runs argv[0] (searched in PATH) with the given arguments, in the folder `cwd` (default: this
+// process's). Output goes to `log` when given, otherwise it is captured into the result.
 ProcessResult run_process(const std::vector<std::string>& argv,
-                          const std::filesystem::path& log = {});
+                          const std::filesystem::path& log = {},
+                          const std::filesystem::path& cwd = {});
 
 // Called about five times a second while a helper program runs — its argv, the seconds since it
 // started, and its log (empty when captured) — and once more with seconds < 0 when it ended.

@@ -1,16 +1,22 @@
 // Temporary files and directories phongsim must not leave behind, and the helper programs it
 // starts. While a temporary exists it is registered, so that SIGINT, SIGTERM, SIGHUP and SIGPIPE
 // stop the registered helper programs, remove every registered temporary and end phongsim with
-// status 128 + the signal (130 for SIGINT, 143 for SIGTERM). What a process killed outright
-// (SIGKILL, a power cut) leaves behind is swept away when phongsim next starts
-// (sweep_stale_temporaries): every temporary's name carries the pid of its owner —
-// `<destination>.tmp.<pid>[.<n>]` beside what it becomes, `phongsim-<what>-<pid>-<suffix>` in the
-// temp directory — and a temporary whose owner no longer runs is stale.
+// status 128 + the signal (130 for SIGINT, 143 for SIGTERM).
+//
+// What a process killed outright (SIGKILL, a power cut) leaves behind is swept away when phongsim
+// next starts (sweep_stale_temporaries). A temporary is recognised by its name alone —
+// `<destination>.phongsim-tmp-XXXXXX` beside what it becomes, `phongsim-<what>-XXXXXX` in the
+// temp directory, XXXXXX random — and its owner holds an flock on it for as
+// long as it lives: a sweep removes only a temporary it can lock, so the live temporaries of a
+// process in another PID namespace (two CI containers sharing a cache volume) stay, and nothing
+// named otherwise is ever touched.
 #pragma once
 
 #include <sys/types.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,19 +44,41 @@ class TempRegistration {
   int slot_ = -1;
 };
 
-// A new directory `<temp dir>/phongsim-<what>-<pid>-XXXXXX`, registered, removed with everything
-// in it when destroyed. Throws Error when it cannot be created.
-class TempDir {
+// A temporary file or directory of this process: created as `<prefix>XXXXXX` (XXXXXX random, a
+// name nobody has; permissions as any new file or folder), registered, and locked (flock) while
+// this object lives. Destroyed, it is removed (with everything in it) unless release()d — after
+// it was renamed into place. Throws Error (errno set) when it cannot be created.
+class OwnedTemp {
  public:
-  explicit TempDir(std::string_view what);
-  ~TempDir();
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
+  enum class Kind { file, directory };
+  OwnedTemp(const std::filesystem::path& prefix, Kind kind);
+  ~OwnedTemp();
+  OwnedTemp(const OwnedTemp&) = delete;
+  OwnedTemp& operator=(const OwnedTemp&) = delete;
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  // The open file (read/write) of a Kind::file temporary; the lock's descriptor of a directory.
+  [[nodiscard]] int fd() const { return fd_; }
+  // Keeps the path (it has been renamed into place) and drops the lock.
+  void release();
 
  private:
   TempRegistration registration_;
   std::filesystem::path path_;
+  int fd_ = -1;
+};
+
+// "<destination>.phongsim-tmp-": the prefix of a temporary beside `destination`.
+[[nodiscard]] std::filesystem::path temp_prefix_beside(const std::filesystem::path& destination);
+
+// A new directory `<temp dir>/phongsim-<what>-XXXXXX` (an OwnedTemp), removed with everything in
+// it when destroyed. `what` is one of the names sweep_stale_temporaries knows (is_temporary_name).
+class TempDir {
+ public:
+  explicit TempDir(std::string_view what);
+  [[nodiscard]] const std::filesystem::path& path() const { return temp_.path(); }
+
+ private:
+  OwnedTemp temp_;
 };
 
 // While alive, the process group `pgid` (a helper program started in a group of its own) gets
@@ -66,23 +94,52 @@ class ChildRegistration {
   int slot_ = -1;
 };
 
-// ".tmp.<pid>": the suffix of this process's temporaries beside their destinations.
-[[nodiscard]] std::string temp_suffix();
+// Crashes (SIGSEGV, SIGBUS, SIGILL, SIGFPE) in code phongsim loads at run time — an RTL plugin —
+// end phongsim with one line naming that code and status 2, its temporaries removed and its
+// helper programs stopped. A crash elsewhere keeps the default action (phongsim's own bug: a
+// core dump). install_signal_cleanup() installs the handler.
+struct AddressRange {
+  std::uintptr_t begin = 0;
+  std::uintptr_t end = 0;  // one past the last byte
+};
 
-// Whether a process with this pid exists.
-[[nodiscard]] bool process_alive(long pid);
+// While alive, a crash whose faulting address or instruction lies in one of `ranges` is
+// reported as a crash in `what` ("the RTL plugin /c/lyon-.../plugin.so"). At most 4 ranges.
+class CrashRegion {
+ public:
+  CrashRegion(std::span<const AddressRange> ranges, std::string_view what);
+  ~CrashRegion();
+  CrashRegion(const CrashRegion&) = delete;
+  CrashRegion& operator=(const CrashRegion&) = delete;
 
-// The pid of the owner named in a temporary's file name: `<anything>.tmp.<pid>[.<n>]`, or
-// `phongsim-<what>-<pid>[-<anything>]` with <what> one of synth, ports, search, out; -1 for any
-// other name.
-[[nodiscard]] long temp_owner(std::string_view name);
+ private:
+  int slot_ = -1;
+};
 
-// Removes the stale temporaries (temp_owner() names a process that no longer runs) directly in
-// the temp directory and in each of `dirs` (not below them). Symbolic links are removed, never
-// followed; what cannot be removed (another user's) is left alone. Housekeeping: never fails.
+// While alive, any crash (of the thread that made it or another) is reported as a crash in
+// `what` ("loading the RTL plugin ..."): for code that has no address range yet.
+class CrashContext {
+ public:
+  explicit CrashContext(std::string_view what);
+  ~CrashContext();
+  CrashContext(const CrashContext&) = delete;
+  CrashContext& operator=(const CrashContext&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
+// Whether `name` is a temporary's name: `<anything>.phongsim-tmp-XXXXXX`, or
+// `phongsim-<what>-XXXXXX` with <what> one of synth, ports, search, out, icarus, study.
+[[nodiscard]] bool is_temporary_name(std::string_view name);
+
+// Removes the stale temporaries — a temporary's name, a regular file or directory (never a
+// symbolic link or anything else), its lock free, and more than a few seconds old — directly in
+// the temp directory and in each of `dirs` (not below them). What cannot be removed (another
+// user's) is left alone. Housekeeping: never fails.
 void sweep_stale_temporaries(const std::vector<std::filesystem::path>& dirs);
 
-// The stale temporaries of one destination: `<path>.tmp.<pid>*` beside it.
+// The stale temporaries of one destination: `<path>.phongsim-tmp-XXXXXX` beside it.
 void sweep_stale_siblings(const std::filesystem::path& path);
 
 }  // namespace phongsim

@@ -187,7 +187,7 @@ PYBIND11_MODULE(phongsim, m) {
         const phongsim::CosimReport r =
             phongsim::cosim({std::string(g.pipeline().name), g.config(), g.model(), stimulus,
                              g.pipeline().independent_vectors, make_dut, label, "",
-                             /*shard_vectors=*/0, g.pipeline().contract(g.model(), g.config())},
+                             g.pipeline().contract(g.model(), g.config())},
                             o);
         py::dict d;
         d["passed"] = r.passed;

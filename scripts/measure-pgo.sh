@@ -30,13 +30,17 @@ trap cleanup EXIT
 
 # 1. A plugin of its own (a flag no other build has), so that phongsim builds it now; its
 #    generated project is copied from phongsim's build directory while that exists.
-flags="-CFLAGS -DPHONGSIM_PGO_PROBE=$$"
+flags="-CFLAGS -frandom-seed=pgo-probe-$$"
+before=$(ls -d "$cache"/build.phongsim-tmp-* 2>/dev/null || true)
 PHONGSIM_VERILATOR_FLAGS="$flags" "$phongsim" build-rtl "$pipeline" > "$work/build-rtl.log" 2>&1 &
 builder=$!
 copied=""
 while kill -0 "$builder" 2>/dev/null; do
-  dir=$cache/build.tmp.$builder
-  if [ -f "$dir/CMakeLists.txt" ] && [ -f "$dir/adapter_0.cpp" ]; then
+  dir=""
+  for d in "$cache"/build.phongsim-tmp-*; do  # the builder's: not there before it started
+    [ -d "$d" ] && ! grep -qxF "$d" <<<"$before" && dir=$d
+  done
+  if [ -n "$dir" ] && [ -f "$dir/CMakeLists.txt" ] && [ -f "$dir/adapter_0.cpp" ]; then
     mkdir "$work/proj"
     cp "$dir/CMakeLists.txt" "$dir/adapter_0.cpp" "$work/proj/"
     copied=$dir

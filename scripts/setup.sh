@@ -10,6 +10,7 @@ packages=(
   lcov                                # genhtml: the HTML report of cosim --coverage
   libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
   libpng-dev                          # PNG images (sim/render/image.h)
+  libssl-dev                          # SHA-256 of what a verdict rests on (base/file_util.h)
   libtinyobjloader-dev                # OBJ meshes (sim/render/mesh.h)
   python3                             # tests/gen_fx_cosim.py writes a test top at configure time
   python3-matplotlib                  # every figure: grids, scanline and Pareto plots (scripts/plot.py)

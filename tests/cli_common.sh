@@ -27,7 +27,7 @@ expect_error() {
 # no_files DIR: nothing but the inputs we put there.
 no_outputs() {
   local left
-  left=$(find "$tmp" -name 'result*' -o -name '*.tmp.*' | head -1)
+  left=$(find "$tmp" -name 'result*' -o -name '*.phongsim-tmp-*' | head -1)
   [ -z "$left" ] || fail "partial output left behind: $left"
 }
 

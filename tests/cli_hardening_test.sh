@@ -87,7 +87,7 @@ EOT
       >/dev/null 2>"$tmp/err"
     [ $? -eq 2 ] || fail "sweep plan on a full disk: $(cat "$tmp/err")"
     [ ! -e "$tmp/plan" ] || fail "a half-planned directory: $(find "$tmp/plan")"
-    ! ls "$tmp" | grep -q '\.tmp\.' || fail "temporaries left: $(ls "$tmp")"
+    ! ls "$tmp" | grep -q 'phongsim-tmp-' || fail "temporaries left: $(ls "$tmp")"
     ;;
 
   signals)
@@ -104,7 +104,7 @@ for sig, status in ((signal.SIGTERM, 143), (signal.SIGINT, 130)):
                           os.path.join(out, "r.json"), "--trace", os.path.join(out, "w.vcd")],
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     deadline = time.time() + 30
-    while time.time() < deadline and not any(".tmp." in f for f in os.listdir(out)):
+    while time.time() < deadline and not any(".phongsim-tmp-" in f for f in os.listdir(out)):
         time.sleep(0.1)
     assert os.listdir(out), "no temporary appeared"
     assert os.listdir(os.environ["TMPDIR"]), "no temporary in TMPDIR"
@@ -137,27 +137,36 @@ for pid in os.listdir("/proc"):
         continue
     assert os.environ["TMPDIR"].encode() not in cmd or pid == str(os.getpid()), cmd
 
-# Stale temporaries of dead processes go at the next start; a live process's stay.
-dead = subprocess.Popen(["true"]); dead.wait()
-live = os.getpid()
-stale = [os.path.join(os.environ["TMPDIR"], f"phongsim-synth-{dead.pid}-abcdef"),
-         os.path.join(os.environ["TMPDIR"], f"phongsim-out-{dead.pid}-abcdef"),
-         os.path.join(tmp, "cache", f"build.tmp.{dead.pid}"),
-         os.path.join(tmp, "cache", "synth", f"0123.json.tmp.{dead.pid}.0"),
-         os.path.join(out, f"r.json.tmp.{dead.pid}")]
-kept = [os.path.join(os.environ["TMPDIR"], f"phongsim-synth-{live}-abcdef"),
-        os.path.join(tmp, "cache", f"build.tmp.{live}"),
-        os.path.join(os.environ["TMPDIR"], "phongsim-cli.not-ours")]
+# Stale temporaries (their owner gone: their lock free) go at the next start; a live one stays
+# (locked, as a phongsim process in another PID namespace would hold it), and so does anything
+# not named as phongsim names its temporaries.
+import fcntl
+stale = [os.path.join(os.environ["TMPDIR"], "phongsim-synth-abcdef"),
+         os.path.join(os.environ["TMPDIR"], "phongsim-out-abcdef"),
+         os.path.join(tmp, "cache", "build.phongsim-tmp-abcdef"),
+         os.path.join(tmp, "cache", "synth", "0123.json.phongsim-tmp-abcdef"),
+         os.path.join(out, "r.json.phongsim-tmp-abcdef")]
+live = [os.path.join(os.environ["TMPDIR"], "phongsim-synth-live01"),
+        os.path.join(tmp, "cache", "build.phongsim-tmp-live01")]
+kept = live + [os.path.join(os.environ["TMPDIR"], "phongsim-cli.not-ours"),
+               os.path.join(out, "r.json.tmp.12345"),
+               os.path.join(out, "r.json.phongsim-tmp-abc")]
 os.makedirs(os.path.join(tmp, "cache", "synth"), exist_ok=True)
 for p_ in stale + kept:
     if "json" in os.path.basename(p_):
         open(p_, "w").write("{")
     else:
         os.makedirs(p_)
+locks = []
+for p_ in live:
+    fd = os.open(p_, os.O_RDONLY)
+    fcntl.flock(fd, fcntl.LOCK_EX)
+    locks.append(fd)
+time.sleep(2.5)  # older than the moment between a temporary's creation and its lock
 subprocess.run([phongsim, "cosim", "--config", default, "--vectors", "10", "--json",
                 os.path.join(out, "r.json")], env=env, check=True, stdout=subprocess.DEVNULL)
 assert [p_ for p_ in stale if os.path.exists(p_)] == [], [p_ for p_ in stale if os.path.exists(p_)]
-assert all(os.path.exists(p_) for p_ in kept), kept
+assert all(os.path.exists(p_) for p_ in kept), [p_ for p_ in kept if not os.path.exists(p_)]
 EOT
     ;;
 

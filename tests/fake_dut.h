@@ -65,6 +65,7 @@ enum class Fault {
   withdraw_valid,        // the first output after #k held by the sink loses out_valid a cycle
   change_while_stalled,  // ... or has its data changed
   never_ready_output,    // out_valid never asserted for anything after #k
+  late_extra,            // once idle for k cycles after its last output, one extra output
 };
 
 struct FaultSpec {
@@ -110,6 +111,7 @@ class FakeDut final : public phongsim::RtlDut {
     accepted_ = 0;
     in_valid_ = out_ready_ = in_ready_ = out_valid_ = false;
     withdraw_now_ = protocol_fault_done_ = trigger_used_ = false;
+    idle_ = 0;
   }
   void set_input(std::span<const std::int64_t> fields) override {
     in_.assign(fields.begin(), fields.end());
@@ -168,6 +170,19 @@ class FakeDut final : public phongsim::RtlDut {
       stages_[j].reset();
     }
     if (in_valid_ && in_ready_) Accept();
+    // late_extra: a copy of the last output, k idle cycles after it, once.
+    const bool empty =
+        std::none_of(stages_.begin(), stages_.end(), [](const auto& st) { return st.has_value(); });
+    idle_ = empty && !in_valid_ && accepted_ > 0 ? idle_ + 1 : 0;
+    if (Is(Fault::late_extra) && !protocol_fault_done_ &&
+        idle_ == static_cast<std::uint64_t>(fault_.k)) {
+      Entry e;
+      e.ordinal = accepted_;
+      (void)model_.eval(in_, e.out);
+      e.faulty = true;
+      stages_.back() = std::move(e);
+      protocol_fault_done_ = true;
+    }
     ++cycle_;
   }
 
@@ -246,6 +261,7 @@ class FakeDut final : public phongsim::RtlDut {
   bool withdraw_now_ = false;
   bool protocol_fault_done_ = false;
   bool trigger_used_ = false;
+  std::uint64_t idle_ = 0;  // cycles with nothing in flight and nothing offered
 };
 
 // ---- expected report text ----
@@ -281,24 +297,16 @@ class Cosim : public ::testing::Test {
     return o;
   }
 
-  // shard_vectors > 0: the main run split into shards of about that many vectors (cosim.h).
   // contract: counted against LIRP's input contract (none: nothing counted).
   CosimReport Run(const FaultSpec& fault, const CosimOptions& o, Probe* probe = nullptr,
-                  std::uint64_t shard_vectors = 0, bool contract = false) {
+                  bool contract = false) {
     const phongsim::DutFactory factory = [&] {
       return DutPtr(new FakeDut(formats_, kLatency, fault, probe), DutDeleter{});
     };
     const phongsim::CosimSubject subject{
-        "lirp",
-        cfg_,
-        *model_,
-        stimulus_,
-        true,
-        factory,
-        "",
-        "",
-        shard_vectors,
-        contract ? lirp_.contract(*model_, cfg_) : phongsim::InputContract()};
+        "lirp",    cfg_, *model_,
+        stimulus_, true, factory,
+        "",        "",   contract ? lirp_.contract(*model_, cfg_) : phongsim::InputContract()};
     return phongsim::cosim(subject, o);
   }
 

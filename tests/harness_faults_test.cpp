@@ -104,7 +104,8 @@ TEST_P(CosimPatterns, NoFaultPasses) {
     EXPECT_EQ(r.cycles, kVectors + kLatency);
     EXPECT_EQ(r.summary(),
               "PASS lirp/default: 3859 vectors (1859 directed + 2000 random, seed 7), 3859 "
-              "outputs, 0 mismatches, 3862 cycles; source none, sink none; throughput "
+              "outputs, 0 mismatches, 3862 cycles; source none, sink none; longest since "
+              "reset 3859 vectors, 3859 outputs (1 DUT); drain 1024 cycles; throughput "
               "1.000/clock, latency 3 cycles");
   } else {
     EXPECT_GT(r.cycles, kVectors + kLatency);  // stalls cost cycles
@@ -157,7 +158,8 @@ TEST_F(Cosim, CorruptLsbIsAMismatchMarkingTheField) {
   EXPECT_EQ(r.summary(),
             "FAIL lirp/default: 2504 of 3859 vectors accepted (1859 directed + 2000 random, seed "
             "7), 2500 "
-            "outputs, 1 mismatches, 2504 cycles; source none, sink none; first failure: "
+            "outputs, 1 mismatches, 2504 cycles; source none, sink none; longest since reset "
+            "2504 vectors, 2500 outputs (1 DUT); first failure: "
             "mismatch");
   EXPECT_EQ(probe.instances, 1);
 }
@@ -283,6 +285,27 @@ TEST_F(Cosim, NeverReadyOutputIsADeadlock) {
 
 // Protocol faults need a sink that stalls. periodic:1110 stalls in cycles 3 mod 4, so an output
 // can only be held there and the violation is seen in the next cycle, 0 mod 4.
+// An output 300 idle cycles after the last expected one (a wrapped counter firing late) falls in
+// the drain window and fails the run, under every stall pattern the cosim tests use.
+TEST_F(Cosim, LateExtraOutputIsAnUnexpectedOutput) {
+  for (const auto& [source, sink] :
+       std::vector<std::pair<std::string, std::string>>{{"none", "none"},
+                                                        {"periodic:1110", "random:0.5"},
+                                                        {"random:0.3", "periodic:0001"},
+                                                        {"long:64:200", "long:100:300"}}) {
+    SCOPED_TRACE(source + " " + sink);
+    CosimOptions o = Options(source, sink);
+    o.timeout = 0;
+    Probe probe;
+    const CosimReport r = Run(Inject(Fault::late_extra, 300), o, &probe);
+    EXPECT_EQ(r.failure_kind, "unexpected output") << r.summary();
+    ASSERT_TRUE(probe.fault_cycle);
+    EXPECT_NE(r.failure.find(fmt::format("UNEXPECTED OUTPUT at cycle {}", *probe.fault_cycle)),
+              std::string::npos)
+        << r.failure;
+  }
+}
+
 TEST_F(Cosim, WithdrawnValidIsAProtocolViolation) {
   const CosimOptions o = Options("none", "periodic:1110");
   Probe probe;

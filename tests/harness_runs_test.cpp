@@ -11,6 +11,7 @@
 #include <regex>
 #include <string>
 
+#include "base/error.h"
 #include "tests/fake_dut.h"
 
 namespace {
@@ -234,14 +235,53 @@ TEST_F(Cosim, BugProtocolAndDeadlockReportsNameTheVector) {
       << deadlock.failure;
 }
 
-// ---- parallel co-simulation: --jobs changes nothing but the time ----
+// ---- DUTs and resets: one DUT sees the whole stream unless asked otherwise ----
 
-// A main run split into 9 shards (400 vectors each, the last 659), run by 1, 2 and 3 workers:
-// the same verdict, counts, cycles, first failure and summary. With two faulty vectors in
-// different shards (2500 in shard 6, 3600 in shard 8, which a third worker reaches and fails
-// first) the report is always the lower one's.
-TEST_F(Cosim, JobsDoNotChangeTheResult) {
-  constexpr std::uint64_t kShard = 400;
+// A DUT that goes wrong at its 3001st transaction since reset (a counter that wraps): the default
+// run (one worker) gives the whole stream to one DUT and fails there; --jobs 2 gives each of two
+// DUTs a contiguous half (1930 and 1929 vectors), and --reset-every 1000 a fresh DUT every 1000
+// vectors: both pass, and say so (the longest sequence since reset is part of the verdict).
+TEST_F(Cosim, OneDutSeesTheWholeStreamByDefault) {
+  const FaultSpec wrap = Inject(Fault::corrupt_lsb, 3000);
+  const CosimReport one = Run(wrap, Options());
+  ASSERT_EQ(one.failure_kind, "mismatch");
+  EXPECT_NE(one.failure.find(", vector 3000 ("), std::string::npos) << one.failure;
+  EXPECT_EQ(one.duts, 1U);
+
+  const CosimReport pass = Run({}, Options());
+  ASSERT_TRUE(pass.passed) << pass.failure;
+  EXPECT_EQ(pass.duts, 1U);
+  EXPECT_EQ(pass.longest_vectors, kVectors);
+  EXPECT_EQ(pass.longest_outputs, kVectors);
+  EXPECT_NE(pass.summary().find(fmt::format("longest since reset {} vectors, {} outputs (1 DUT)",
+                                            kVectors, kVectors)),
+            std::string::npos)
+      << pass.summary();
+
+  CosimOptions two = Options();
+  two.jobs = 2;
+  const CosimReport halves = Run(wrap, two);
+  ASSERT_TRUE(halves.passed) << halves.failure;
+  EXPECT_EQ(halves.duts, 2U);
+  EXPECT_EQ(halves.longest_vectors, kVectors - kVectors / 2);
+  EXPECT_NE(halves.summary().find(fmt::format("longest since reset {} vectors, {} outputs (2 DUTs)",
+                                              kVectors - kVectors / 2, kVectors - kVectors / 2)),
+            std::string::npos)
+      << halves.summary();
+
+  CosimOptions every = Options();
+  every.reset_every = 1000;
+  const CosimReport resets = Run(wrap, every);
+  ASSERT_TRUE(resets.passed) << resets.failure;
+  EXPECT_EQ(resets.duts, 4U);
+  EXPECT_EQ(resets.longest_vectors, 1000U);
+}
+
+// With --reset-every the runs are fixed by the stream, so 1, 2 and 3 workers give the same
+// verdict, counts, cycles, first failure and summary. With two faulty vectors in different runs
+// (2500 in run 6, 3600 in run 8, which a third worker reaches and fails first) the report is
+// always the lower one's, and its reproduce line carries --reset-every.
+TEST_F(Cosim, WithResetEveryJobsDoNotChangeTheResult) {
   const auto same = [](const CosimReport& a, const CosimReport& b, unsigned jobs) {
     SCOPED_TRACE(jobs);
     EXPECT_EQ(a.passed, b.passed);
@@ -258,26 +298,50 @@ TEST_F(Cosim, JobsDoNotChangeTheResult) {
   };
   CosimOptions o = Options("random:0.3", "random:0.5");
   o.timeout = 0;
-  const CosimReport pass1 = Run({}, o, nullptr, kShard);
+  o.reset_every = 400;
+  const CosimReport pass1 = Run({}, o);
   EXPECT_TRUE(pass1.passed) << pass1.failure;
   EXPECT_EQ(pass1.vectors, kVectors);
   EXPECT_EQ(pass1.outputs, kVectors);
-  // Split: each shard starts on a fresh DUT with its own stalls, so the cycle count differs
-  // from the unsplit run's.
-  EXPECT_NE(pass1.cycles, Run({}, o, nullptr, 0).cycles);
+  EXPECT_EQ(pass1.duts, 10U);
+  EXPECT_EQ(pass1.longest_vectors, 400U);
+  // Split: each run starts on a fresh DUT with its own stalls, so the cycle count differs from
+  // the unsplit run's.
+  CosimOptions whole = o;
+  whole.reset_every = 0;
+  EXPECT_NE(pass1.cycles, Run({}, whole).cycles);
 
   FaultSpec two = Inject(Fault::corrupt_lsb, 0);
   two.trigger = Inputs(3600);
   two.trigger2 = Inputs(kK);
-  const CosimReport fail1 = Run(two, o, nullptr, kShard);
+  const CosimReport fail1 = Run(two, o);
   ASSERT_EQ(fail1.failure_kind, "mismatch");
   EXPECT_NE(fail1.failure.find(fmt::format(", vector {} (", kK)), std::string::npos)
       << fail1.failure;
+  EXPECT_NE(fail1.failure.find(" --reset-every 400"), std::string::npos) << fail1.failure;
   for (const unsigned jobs : {2U, 3U}) {
     o.jobs = jobs;
-    same(pass1, Run({}, o, nullptr, kShard), jobs);
-    same(fail1, Run(two, o, nullptr, kShard), jobs);
+    same(pass1, Run({}, o), jobs);
+    same(fail1, Run(two, o), jobs);
   }
+}
+
+// A run that checks nothing cannot pass: no vectors is an error, not a PASS.
+TEST_F(Cosim, NoVectorsIsRefused) {
+  CosimOptions o = Options();
+  o.directed = false;
+  o.random_vectors = 0;
+  EXPECT_THROW((void)Run({}, o), phongsim::Error);
+}
+
+// After the last expected output the sink stays ready with no input for the drain window (at
+// least kTailCycles plus the patterns' longest stalls); an output in it fails the run.
+TEST_F(Cosim, DrainWindowIsStated) {
+  const CosimReport r = Run({}, Options("none", "long:100:300"));
+  ASSERT_TRUE(r.passed) << r.failure;
+  EXPECT_GE(r.drain_cycles, phongsim::kTailCycles + 100);
+  EXPECT_NE(r.summary().find(fmt::format("; drain {} cycles", r.drain_cycles)), std::string::npos)
+      << r.summary();
 }
 
 // ---- the scoreboard's rule ----
@@ -329,7 +393,6 @@ TEST_F(Cosim, AnOutputInTheCycleItsVectorIsAcceptedIsUnexpected) {
       .make_dut = [&] { return DutPtr(new PassthroughDut(formats_), DutDeleter{}); },
       .rtl_label = {},
       .rtl_options = {},
-      .shard_vectors = 0,
       .contract = {}};
   const CosimReport r = phongsim::cosim(subject, Options());
   EXPECT_FALSE(r.passed);
@@ -345,7 +408,7 @@ TEST_F(Cosim, AnOutputInTheCycleItsVectorIsAcceptedIsUnexpected) {
 TEST_F(Cosim, ContractCountsEveryAcceptedVector) {
   CosimOptions o = Options("random:0.3", "random:0.5");
   o.timeout = 0;
-  const CosimReport whole = Run({}, o, nullptr, 0, true);
+  const CosimReport whole = Run({}, o, nullptr, true);
   ASSERT_TRUE(whole.passed) << whole.failure;
   ASSERT_TRUE(whole.contract.has_value());
   EXPECT_EQ(whole.contract->in + whole.contract->out(), whole.vectors);
@@ -365,15 +428,16 @@ TEST_F(Cosim, ContractCountsEveryAcceptedVector) {
             std::string::npos)
       << whole.summary();
   o.jobs = 2;
-  const CosimReport split = Run({}, o, nullptr, 400, true);
+  o.reset_every = 400;
+  const CosimReport split = Run({}, o, nullptr, true);
   EXPECT_EQ(split.contract->in, direct.in);
   EXPECT_EQ(split.contract->by_clause, direct.by_clause);
   // Without a contract nothing is counted and the summary says nothing about it.
-  const CosimReport none = Run({}, Options(), nullptr, 0, false);
+  const CosimReport none = Run({}, Options(), nullptr, false);
   EXPECT_FALSE(none.contract.has_value());
   EXPECT_EQ(none.summary().find("contract"), std::string::npos);
 
-  const CosimReport failed = Run(Inject(Fault::corrupt_lsb, kK), Options(), nullptr, 0, true);
+  const CosimReport failed = Run(Inject(Fault::corrupt_lsb, kK), Options(), nullptr, true);
   ASSERT_FALSE(failed.passed);
   EXPECT_EQ(failed.contract->in + failed.contract->out(), failed.vectors);
   EXPECT_LT(failed.vectors, whole.vectors);

@@ -6,8 +6,9 @@
 #   tests/icarus_test.sh BUILD_DIR ports      a LIRP whose output port is a bit narrower than the
 #                                             contract: refused before simulating (Icarus would
 #                                             only warn and connect what fits)
-#   tests/icarus_test.sh BUILD_DIR x          a LIRP whose y component is X: an X/Z error (a
-#                                             two-state simulator would see some value)
+#   tests/icarus_test.sh BUILD_DIR x          a LIRP whose y component is X: a failure, exit 1
+#                                             and in the JUnit report (a two-state simulator
+#                                             would see some value)
 set -uo pipefail
 phongsim="$1/phongsim"
 src=$(cd "$(dirname "$0")/.." && pwd)
@@ -36,11 +37,13 @@ case "$2" in
     sed 's/assign out_p_o\[c\*OW+:OW\] = p_q;/assign out_p_o[c*OW+:OW] = c == 1 ? {OW{1'"'"'bx}} : p_q;/' \
       "$src/examples/your-rtl/my_lirp.sv" >"$tmp/my_lirp.sv"
     grep -q "1'bx" "$tmp/my_lirp.sv" || { echo "the X variant was not made"; exit 1; }
+    # A wrong design, not bad input: exit 1, a failure in the JUnit report.
     out=$("$phongsim" cosim lirp --simulator icarus --rtl "$tmp/my_lirp.sv" --top my_lirp \
-      "${stalls[@]}" 2>&1)
+      "${stalls[@]}" --junit "$tmp/x.xml" 2>&1)
     rc=$?
     printf '%s\n' "$out"
-    [ $rc -ne 0 ] && grep -q "out_p_o is .*x.* while out_valid_o (X or Z)" <<<"$out"
+    [ $rc -eq 1 ] && grep -q "UNKNOWN VALUE (X or Z): cycle .*: out_p_o is .*x.* while out_valid_o" <<<"$out" &&
+      grep -q '<failure type="unknown value"' "$tmp/x.xml"
     ;;
   *)
     # quad: every vector is a triangle of up to thousands of pixels, at ~10^4 cycles/s in Icarus

@@ -10,6 +10,8 @@
 #include <thread>
 #include <vector>
 
+#include "base/error.h"
+#include "base/text.h"
 #include "model/plan.h"
 #include "sim/cosim/harness.h"
 
@@ -461,6 +463,13 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus,
           fmt::format("  waiting for in_ready: vector {}\n", first + *phase.harness.waiting_input);
     }
     phase.detail.vector = board.next_due();
+  } else if (phase.harness.reason == StopReason::unknown_value) {
+    phase.kind = "unknown value";
+    phase.report = fmt::format("UNKNOWN VALUE (X or Z): {}\n", phase.harness.message);
+    if (const auto due = board.next_due()) {
+      phase.report += fmt::format("  the output due next is vector {}'s\n", *due);
+    }
+    phase.detail.vector = board.next_due();
   } else if (phase.harness.reason == StopReason::protocol) {
     phase.kind = "protocol";
     phase.report = fmt::format("HANDSHAKE VIOLATION: {}\n", phase.harness.message);
@@ -486,30 +495,39 @@ bool rejects_an_output(const std::string& kind) {
   return kind == "mismatch" || kind == "unexpected output";
 }
 
-// A main run of many vectors is split into shards, each run on a fresh DUT (and model) from its
-// first vector, its stall patterns drawn from its own stream position. The split depends only on
-// the run (vectors, pipeline), never on --jobs, so every result is the same however many
-// workers share the shards; jobs 1 runs them one after the other.
+// The main run's vectors go to one or more DUTs, each from reset, as shards: a shard is a
+// contiguous range of vectors run on a fresh DUT (and model), its stall patterns drawn from its
+// own stream position. By default one shard per worker (--jobs), so that with one worker one DUT
+// sees the whole stream; with reset_every, a shard every that many vectors, whatever the number
+// of workers (which then changes nothing but the time). Shards begin at group starts when
+// vectors depend on the ones before them.
 struct Shard {
   std::uint64_t first = 0;
   std::uint64_t count = 0;
   std::uint64_t stream = 0;
 };
-constexpr std::uint64_t kMaxShards = 16;
+
+bool splittable(const CosimSubject& s) { return s.independent_vectors || s.stimulus.has_groups(); }
 
 std::vector<Shard> shards_of(const CosimSubject& s, const CosimOptions& o, std::uint64_t first,
                              std::uint64_t count) {
-  const bool splittable =
-      !o.only_index && s.shard_vectors > 0 && (s.independent_vectors || s.stimulus.has_groups());
-  const std::uint64_t k =
-      splittable ? std::clamp<std::uint64_t>(count / s.shard_vectors, 1, kMaxShards) : 1;
+  std::vector<std::uint64_t> cuts;  // where shards after the first begin (before group starts)
+  if (!o.only_index && splittable(s)) {
+    if (o.reset_every > 0) {
+      for (std::uint64_t at = o.reset_every; at < count; at += o.reset_every) {
+        cuts.push_back(first + at);
+      }
+    } else {
+      const std::uint64_t k = std::max<std::uint64_t>(o.jobs, 1);
+      for (std::uint64_t i = 1; i < k; ++i) cuts.push_back(first + count / k * i);
+    }
+  }
   std::vector<Shard> shards;
   std::uint64_t start = first;
-  for (std::uint64_t i = 1; i <= k; ++i) {
+  for (std::size_t i = 0; i <= cuts.size(); ++i) {
     const std::uint64_t end =
-        i == k ? first + count
-               : std::min(first + count, s.stimulus.group_start(first + count / k * i));
-    if (end > start || (i == k && shards.empty())) {
+        i == cuts.size() ? first + count : std::min(first + count, s.stimulus.group_start(cuts[i]));
+    if (end > start || (i == cuts.size() && shards.empty())) {
       shards.push_back({start, end - start, shards.size()});
       start = end;
     }
@@ -541,7 +559,9 @@ struct MainRun {
   Shard shard;                                        // which
   std::uint64_t inputs = 0, outputs = 0, cycles = 0;  // summed up to it
   std::uint64_t source_idle = 0, sink_stalled = 0;    // likewise
-  ContractCounts contract;                            // likewise
+  std::uint64_t duts = 0;                             // shards run up to it
+  std::uint64_t longest_inputs = 0, longest_outputs = 0, drain = 0;  // the most of one shard
+  ContractCounts contract;                                           // likewise
 };
 
 // Runs the shards in order, `o.jobs` at a time, up to the first that fails (the lowest-numbered:
@@ -551,24 +571,32 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
   std::vector<Phase> phases(shards.size());
   std::size_t failed = shards.size();
   const std::size_t jobs = std::min<std::size_t>(std::max(o.jobs, 1U), shards.size());
-  // Progress (inputs accepted of all shards'): within a shard when one worker runs them, else
-  // as shards finish.
-  std::uint64_t total = 0, finished = 0;
+  // Progress: the inputs accepted by all workers so far, of all shards'.
+  std::uint64_t total = 0;
   for (const Shard& sh : shards) total += sh.count;
   std::mutex progress_mutex;
-  const auto shard_done = [&](const Shard& sh) {
+  std::vector<std::uint64_t> done(jobs, 0), finished(jobs, 0);
+  const auto report = [&](std::size_t w, std::uint64_t within) {
     if (!o.progress) return;
     const std::lock_guard lock(progress_mutex);
-    finished += sh.count;
-    o.progress(finished, total);
+    done[w] = finished[w] + within;
+    std::uint64_t all = 0;
+    for (const std::uint64_t d : done) all += d;
+    o.progress(all, total);
+  };
+  const auto run_one = [&](std::size_t w, PipelineModel& model, const Stimulus& stimulus,
+                           std::size_t k) {
+    phases[k] = run_shard(s, model, stimulus, o, ho, shards[k],
+                          [&, w](std::uint64_t d, std::uint64_t) { report(w, d); });
+    {
+      const std::lock_guard lock(progress_mutex);
+      finished[w] += shards[k].count;
+    }
+    report(w, 0);
   };
   if (jobs <= 1) {
     for (std::size_t k = 0; k < shards.size() && failed == shards.size(); ++k) {
-      const auto within = [&](std::uint64_t done, std::uint64_t) {
-        if (o.progress) o.progress(finished + done, total);
-      };
-      phases[k] = run_shard(s, s.model, s.stimulus, o, ho, shards[k], within);
-      shard_done(shards[k]);
+      run_one(0, s.model, s.stimulus, k);
       if (!phases[k].kind.empty()) failed = k;
     }
   } else {
@@ -587,8 +615,7 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
       workers.emplace_back([&, w] {
         try {
           for (std::size_t k = next++; k < shards.size() && k < first_failure; k = next++) {
-            phases[k] = run_shard(s, *models[w], stimuli[w], o, ho, shards[k]);
-            shard_done(shards[k]);
+            run_one(w, *models[w], stimuli[w], k);
             if (phases[k].kind.empty()) continue;
             std::size_t f = first_failure;
             while (k < f && !first_failure.compare_exchange_weak(f, k)) {
@@ -608,13 +635,20 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
   MainRun run;
   const std::size_t last = std::min(failed, shards.size() - 1);
   for (std::size_t k = 0; k <= last; ++k) {
-    run.inputs += phases[k].harness.inputs;
-    run.outputs += phases[k].harness.outputs;
-    run.cycles += phases[k].harness.cycles;
-    run.source_idle += phases[k].harness.source_idle_cycles;
-    run.sink_stalled += phases[k].harness.sink_stall_cycles;
+    const HarnessResult& h = phases[k].harness;
+    // A rejected output was taken, not checked right.
+    const std::uint64_t outputs = h.outputs - (rejects_an_output(phases[k].kind) ? 1 : 0);
+    run.inputs += h.inputs;
+    run.outputs += outputs;
+    run.cycles += h.cycles;
+    run.source_idle += h.source_idle_cycles;
+    run.sink_stalled += h.sink_stall_cycles;
+    run.longest_inputs = std::max(run.longest_inputs, h.inputs);
+    run.longest_outputs = std::max(run.longest_outputs, outputs);
+    run.drain = std::max(run.drain, h.drain_cycles);
     run.contract.add(phases[k].contract);
   }
+  run.duts = last + 1;
   run.last = std::move(phases[last]);
   run.shard = shards[last];
   return run;
@@ -623,7 +657,7 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
 std::string repro_command(const CosimReport& r, std::optional<std::uint64_t> only) {
   const auto& o = r.options;
   std::string cmd = fmt::format("phongsim cosim --pipeline {} --config {}{} --seed {}", r.pipeline,
-                                r.config_path, r.rtl_options, o.seed);
+                                shell_quoted(r.config_path), r.rtl_options, o.seed);
   if (only) {
     cmd += fmt::format(" --vector-index {}", *only);
   } else {
@@ -632,6 +666,11 @@ std::string repro_command(const CosimReport& r, std::optional<std::uint64_t> onl
   }
   cmd += fmt::format(" --source-idle {} --backpressure {}", o.source.str(), o.sink.str());
   if (o.timeout != 0) cmd += fmt::format(" --timeout {}", o.timeout);
+  if (o.reset_every != 0) {
+    cmd += fmt::format(" --reset-every {}", o.reset_every);
+  } else if (o.jobs > 1 && !only) {
+    cmd += fmt::format(" --jobs {}", o.jobs);  // the DUTs' shares of the stream
+  }
   return cmd;
 }
 
@@ -666,6 +705,9 @@ std::string CosimReport::summary() const {
   if (contract) s += contract_text + ", ";
   s += fmt::format("{} outputs, {} mismatches, {} cycles; source {}, sink {}", outputs, mismatches,
                    cycles, options.source.str(), options.sink.str());
+  s += fmt::format("; longest since reset {} vectors, {} outputs ({} DUT{})", longest_vectors,
+                   longest_outputs, duts, duts == 1 ? "" : "s");
+  if (passed) s += fmt::format("; drain {} cycles", drain_cycles);
   if (throughput > 0) {
     s += fmt::format("; throughput {:.3f}/clock, latency {}", throughput, latency_min);
     if (latency_max != latency_min) s += fmt::format("..{}", latency_max);
@@ -698,6 +740,17 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   }
   r.directed = options.only_index ? (first < stimulus.directed_count() ? 1 : 0) : directed;
   r.random = count - r.directed;
+  if (count == 0) {
+    throw Error(
+        "nothing to check: the run has no vectors (--vectors 0 with --no-directed); a run that "
+        "checks nothing cannot pass");
+  }
+  if (options.reset_every != 0 && !splittable(subject)) {
+    throw Error(fmt::format(
+        "--reset-every: {}'s vectors depend on the ones before them and it has no group starts "
+        "to reset at",
+        subject.pipeline));
+  }
 
   HarnessOptions ho;
   ho.source = options.source;
@@ -711,8 +764,12 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   const MainRun run = run_shards(subject, options, ho, shards_of(subject, options, first, count));
   const Phase& main = run.last;
   r.vectors = run.inputs;
-  r.outputs = run.outputs - (rejects_an_output(main.kind) ? 1 : 0);
+  r.outputs = run.outputs;
   r.cycles = run.cycles;
+  r.duts = run.duts;
+  r.longest_vectors = run.longest_inputs;
+  r.longest_outputs = run.longest_outputs;
+  r.drain_cycles = run.drain;
   r.source_idle_cycles = run.source_idle;
   r.sink_stall_cycles = run.sink_stalled;
   if (subject.contract.defined()) {

@@ -32,7 +32,13 @@ struct CosimOptions {
   std::uint64_t trace_window = 1000;        // cycles before a failure (or from the start)
   std::uint64_t timeout = 0;                // deadlock timeout in cycles; 0 = harness default
   std::uint64_t measure_vectors = 1000;     // stall-free run that measures throughput/latency
-  unsigned jobs = 1;  // workers sharing the main run's shards (CosimSubject::shard_vectors)
+  // Workers (threads). The main run's vectors go to `jobs` DUTs, each taking a contiguous share
+  // from reset to its end (at group starts when vectors are not independent: Stimulus), unless
+  // reset_every is set.
+  unsigned jobs = 1;
+  // A fresh DUT (from reset) every this many vectors, at group starts; the workers share those
+  // runs, and --jobs changes nothing but the time. 0: no resets but one per worker's share.
+  std::uint64_t reset_every = 0;
   // Called now and then during the main run with (inputs accepted, inputs in total).
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
 };
@@ -57,7 +63,7 @@ struct FieldComparison {
 
 // The first failure as data — the same facts as the text report, for JSON (docs/json.md).
 struct CosimFailure {
-  std::string kind;                      // "mismatch", "unexpected output", "deadlock", "protocol"
+  std::string kind;  // "mismatch", "unexpected output", "deadlock", "protocol", "unknown value"
   std::uint64_t cycle = 0;               // the cycle it was detected in
   std::optional<std::uint64_t> vector;   // mismatch: the vector owning the output; deadlock,
                                          // protocol: the vector owing the next output
@@ -87,6 +93,14 @@ struct CosimReport {
   std::string contract_text;  // InputContract::summary of the counts, for the summary line
   std::uint64_t mismatches = 0;
   std::uint64_t cycles = 0;  // main run
+  // The main run's DUTs (each from reset), and the most vectors and outputs one of them took
+  // since its reset: the longest sequence the verdict vouches for.
+  std::uint64_t duts = 0;
+  std::uint64_t longest_vectors = 0;
+  std::uint64_t longest_outputs = 0;
+  // The longest drain window of the main run's DUTs: cycles after the last expected output with
+  // the sink ready and no input, in which any output fails the run (0: no run finished).
+  std::uint64_t drain_cycles = 0;
   // The main run's stall patterns at work (HarnessResult): what the stall-pattern coverpoints
   // count.
   std::uint64_t source_idle_cycles = 0;
@@ -97,8 +111,8 @@ struct CosimReport {
   std::uint64_t latency_min = 0;
   std::uint64_t latency_max = 0;
   bool passed = false;
-  std::string failure_kind;  // "", "mismatch", "unexpected output", "deadlock", "protocol"
-  std::string failure;       // multi-line first-failure report
+  std::string failure_kind;                    // "", or a CosimFailure kind
+  std::string failure;                         // multi-line first-failure report
   std::optional<CosimFailure> failure_detail;  // the same as data
   std::string trace_written;                   // waveform path, when one was written
 
@@ -122,16 +136,14 @@ struct CosimSubject {
   // select it again, for reproduce commands (" --rtl my/lirp --top my_lirp").
   std::string rtl_label;
   std::string rtl_options;
-  // A main run of at least two shards' worth of vectors is split into up to 16 shards of at
-  // least this many, each on a fresh DUT (at group starts when vectors are not independent:
-  // Stimulus::group_start); 0: never split. The split decides every result, --jobs only how many
-  // shards run at once.
-  std::uint64_t shard_vectors = 0;
   // The pipeline's input contract for this configuration; the report counts the main run's
   // vectors against it. None (default): nothing counted.
   InputContract contract;
 };
 
+// Error (nothing is checked, so nothing may pass) when the options give no vector; and when
+// reset_every or jobs > 1 ask for resets in a stream whose vectors depend on each other with no
+// group starts.
 CosimReport cosim(const CosimSubject& subject, const CosimOptions& options);
 
 // The scoreboard makes and evaluates the vectors a batch at a time: at most kCosimBatch, and

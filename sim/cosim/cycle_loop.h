@@ -12,8 +12,10 @@
 //   output is taken when the sink is ready; clock; an RTL assertion stops the run; an input is
 //   accepted when it was presented and in_ready was high.
 // Once every input is in and the run's outputs are in (finish rule below), the sink stays ready
-// for `tail` more cycles so that an extra output still shows. No handshake for `timeout` cycles
-// is a deadlock.
+// and no input comes for a drain window, so that an extra output still shows: at least `tail`
+// cycles, and at least twice the longest stretch without a handshake the run had (a design that
+// can fall silent that long can also answer that late). No handshake for `timeout` cycles before
+// the drain is a deadlock.
 #pragma once
 
 #include <algorithm>
@@ -24,9 +26,9 @@
 
 namespace phongsim {
 
-// After the last expected output the sink stays ready this many cycles, so that an extra output
-// still reaches the checks.
-inline constexpr std::uint64_t kTailCycles = 64;
+// After the last expected output the sink stays ready at least this many cycles (the harness adds
+// the stall patterns' longest stalls), so that an extra output still reaches the checks.
+inline constexpr std::uint64_t kTailCycles = 1024;
 // Without a model to say how many outputs are due (eval, bench): the run ends once the DUT has
 // been silent this many cycles after the last input and output.
 inline constexpr std::uint64_t kDrainCycles = 1000;
@@ -35,7 +37,7 @@ enum class LoopStop : std::uint8_t {
   need_inputs,   // every supplied input is presented and more may come
   need_stalls,   // the stall decisions supplied are used up
   buffer_full,   // the output or accept record is full
-  finished,      // the run is over (after its tail)
+  finished,      // the run is over (after its drain window)
   deadlock,      // no handshake for `timeout` cycles
   held_changed,  // an output the sink stalled was withdrawn or changed
   assertion,     // an RTL assertion fired
@@ -93,8 +95,9 @@ struct CycleState {
   std::uint64_t last_activity = 0;  // last handshake, not reset by finishing (drain rule)
   std::uint64_t finish_cycles = 0;  // the run's length: set when it finished (before the tail)
   std::uint64_t tail_end = 0;
-  std::uint64_t source_idle = 0;   // cycles the source pattern withheld the next input
-  std::uint64_t sink_stalled = 0;  // cycles an output waited for the sink
+  std::uint64_t longest_quiet = 0;  // the longest stretch of cycles without a handshake so far
+  std::uint64_t source_idle = 0;    // cycles the source pattern withheld the next input
+  std::uint64_t sink_stalled = 0;   // cycles an output waited for the sink
   bool presenting = false;
   bool inputs_done = false;
   bool output_held = false;
@@ -165,6 +168,7 @@ void run_cycles(Dut& dut, CycleBatch& b, CycleState& st) {
       if (st.outputs == 0) st.first_output_cycle = c;
       st.last_output_cycle = c;
       ++st.outputs;
+      st.longest_quiet = std::max(st.longest_quiet, c - st.last_progress);
       st.last_progress = st.last_activity = c;
       b.output_cycles[b.outputs_written++] = c;
     }
@@ -178,6 +182,7 @@ void run_cycles(Dut& dut, CycleBatch& b, CycleState& st) {
       ++st.next_index;
       ++st.inputs;
       st.presenting = false;
+      st.longest_quiet = std::max(st.longest_quiet, c - st.last_progress);
       st.last_progress = st.last_activity = c;
     }
     if (st.tailing) {
@@ -185,10 +190,12 @@ void run_cycles(Dut& dut, CycleBatch& b, CycleState& st) {
         b.stop = LoopStop::finished;
         return;
       }
-    } else if (st.inputs_done && !st.presenting &&
-               (b.drain > 0 ? c - st.last_activity >= b.drain : st.outputs >= b.outputs_due)) {
-      st.finish_cycles = c + 1;  // the run proper; the tail only watches for extra outputs
-      st.tail_end = c + b.tail;
+      continue;  // the drain window is bounded: no deadlock in it
+    }
+    if (st.inputs_done && !st.presenting &&
+        (b.drain > 0 ? c - st.last_activity >= b.drain : st.outputs >= b.outputs_due)) {
+      st.finish_cycles = c + 1;  // the run proper; the drain only watches for extra outputs
+      st.tail_end = c + std::max(b.tail, 2 * st.longest_quiet);
       st.tailing = true;
       st.last_progress = c;
     }

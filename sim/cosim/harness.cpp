@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 namespace phongsim {
@@ -60,6 +61,7 @@ HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t out
   b.timeout = options.timeout != 0
                   ? options.timeout
                   : 100000 + options.source.longest_stall() + options.sink.longest_stall();
+  b.tail = kTailCycles + options.source.longest_stall() + options.sink.longest_stall();
   std::vector<std::int64_t> held(output_fields);
   b.held = held.data();
   if (!options.trace_path.empty()) {
@@ -85,7 +87,13 @@ HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t out
   CycleState st;
   dut.reset();
   while (true) {
-    dut.run(b, st);
+    // An X or Z stops the run where it showed; the outputs taken before it are checked first.
+    std::optional<std::string> unknown;
+    try {
+      dut.run(b, st);
+    } catch (const UnknownValue& e) {
+      unknown = e.what();
+    }
     r.source_idle_cycles = st.source_idle;
     r.sink_stall_cycles = st.sink_stalled;
     const std::uint64_t inputs_before = st.inputs - b.accepts_written;
@@ -119,6 +127,12 @@ HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t out
     r.outputs = st.outputs;
     r.first_output_cycle = st.first_output_cycle;
     r.last_output_cycle = st.last_output_cycle;
+    if (unknown) {
+      r.reason = StopReason::unknown_value;
+      r.message = *unknown;
+      r.cycles = st.cycle + 1;
+      return r;
+    }
     switch (b.stop) {
       case LoopStop::need_inputs: {
         const InputBatch in = hooks.next_inputs(st.next_index);
@@ -142,6 +156,7 @@ HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t out
         break;
       case LoopStop::finished:
         r.cycles = st.finish_cycles;
+        r.drain_cycles = st.tail_end + 1 - st.finish_cycles;
         return r;
       case LoopStop::deadlock:
         r.reason = StopReason::deadlock;

@@ -56,11 +56,12 @@ struct HarnessHooks {
       check;
 };
 
-enum class StopReason { finished, stopped_by_hook, deadlock, protocol };
+// unknown_value: a four-state DUT showed X or Z where a value was due (UnknownValue).
+enum class StopReason { finished, stopped_by_hook, deadlock, protocol, unknown_value };
 
 struct HarnessResult {
   StopReason reason = StopReason::finished;
-  std::string message;       // for deadlock and protocol errors
+  std::string message;       // for deadlock, protocol and unknown_value errors
   std::uint64_t cycles = 0;  // up to the stop (finished: the cycle all outputs were in)
   std::uint64_t inputs = 0;
   std::uint64_t outputs = 0;
@@ -71,14 +72,18 @@ struct HarnessResult {
   // waited for the sink.
   std::uint64_t source_idle_cycles = 0;
   std::uint64_t sink_stall_cycles = 0;
+  // The drain window after the run finished, in cycles (0 when it did not finish).
+  std::uint64_t drain_cycles = 0;
 };
 
 // Resets the DUT and runs until the run is finished (every input accepted and every output due
-// taken; then the sink stays ready kTailCycles more cycles so that an extra output after the last
-// expected one still reaches the check hook), the hook stops it at a wrong output, no handshake
-// happens for the timeout, or the DUT breaks the valid/ready rules (an output withdrawn or
-// changed while the sink stalls it, or an RTL assertion). The result is the same as if every
-// output were checked the cycle it is taken: a run stopped at a wrong output ends in that cycle.
+// taken; then the sink stays ready with no input for a drain window — kTailCycles plus the stall
+// patterns' longest stalls, or twice the longest stretch without a handshake the run had, if
+// longer — so that an extra output after the last expected one still reaches the check hook), the
+// hook stops it at a wrong output, no handshake happens for the timeout, or the DUT breaks the
+// valid/ready rules (an output withdrawn or changed while the sink stalls it, or an RTL assertion).
+// The result is the same as if every output were checked the cycle it is taken: a run stopped at a
+// wrong output ends in that cycle.
 HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t output_fields,
                           const HarnessOptions& options, const HarnessHooks& hooks);
 

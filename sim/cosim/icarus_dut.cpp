@@ -17,6 +17,7 @@
 #include "base/error.h"
 #include "base/process.h"
 #include "base/temporaries.h"
+#include "sim/cosim/rtl_sources.h"
 
 namespace fs = std::filesystem;
 
@@ -179,7 +180,7 @@ class IcarusDut final : public RtlDut {
     if (w.size() != 3 + build_->out.size()) throw Error("icarus: malformed reply from vvp");
     const auto bit = [&](const std::string& v, const char* port) {
       if (v != "0" && v != "1") {
-        throw Error(fmt::format("icarus: cycle {}: {} is {} (X or Z)", cycle_, port, v));
+        throw UnknownValue(fmt::format("cycle {}: {} is {} (X or Z)", cycle_, port, v));
       }
       return v == "1";
     };
@@ -231,8 +232,8 @@ class IcarusDut final : public RtlDut {
                               hex.size(), (p.width + 3) / 4));
     }
     if (hex.find_first_not_of("0123456789abcdef") != std::string::npos) {
-      throw Error(fmt::format("icarus: cycle {}: {} is {} while out_valid_o (X or Z)", cycle_,
-                              p.name, hex));
+      throw UnknownValue(
+          fmt::format("cycle {}: {} is {} while out_valid_o (X or Z)", cycle_, p.name, hex));
     }
     int lsb = 0;
     for (std::size_t k = 0; k < p.fields.size(); ++k) {
@@ -277,6 +278,8 @@ DutFactory icarus_duts(const RtlDesign& design, const PipelineModel& model, std:
                                 "-s",
                                 "phongsim_icarus_tb",
                                 (build->dir.path() / "tb.sv").string()};
+  // The same include folders as Verilator's (rtl_sources.h).
+  for (const fs::path& dir : rtl_include_dirs(design.files)) argv.push_back("-I" + dir.string());
   for (const auto& f : rtl_files(design.files)) argv.push_back(f.string());
   if (log != nullptr) fmt::print(log, "Compiling {} with Icarus Verilog\n", design.name);
   const ProcessResult r = run_process(argv);

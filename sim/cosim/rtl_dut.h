@@ -20,10 +20,19 @@
 #include <string>
 #include <vector>
 
+#include "base/error.h"
 #include "model/pipeline.h"
 #include "sim/cosim/cycle_loop.h"
 
 namespace phongsim {
+
+// Thrown by a four-state DUT (Icarus) whose ports show an X or Z where a value is due: on a
+// handshake output, or on a data output while it is valid. Not bad input but a wrong design: the
+// harness stops the run there and reports it as the run's failure ("unknown value").
+class UnknownValue : public Error {
+ public:
+  using Error::Error;
+};
 
 // What the bare loop of run_bare() did.
 struct BareStats {
@@ -99,7 +108,7 @@ class RtlDut {
 
 // Bumped whenever RtlDut or the plugin entry points change; a plugin built against another
 // version is refused (and rebuilt when it lives in the cache).
-inline constexpr int kRtlPluginAbi = 3;
+inline constexpr int kRtlPluginAbi = 4;
 
 // Plugin entry points (extern "C" so dlsym finds them by name).
 using RtlCreateFn = std::unique_ptr<RtlDut> (*)(const std::vector<Field>& inputs,

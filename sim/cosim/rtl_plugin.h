@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "base/temporaries.h"
 #include "model/config.h"
 #include "model/pipeline.h"
 #include "sim/cosim/rtl_dut.h"
@@ -122,6 +123,8 @@ class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
                               const std::string& coverage_prefix = "");
   // Whether the plugin was built with XInit::random.
   [[nodiscard]] bool x_random() const { return x_seed_ != nullptr; }
+  // The $PHONGSIM_VERILATOR_FLAGS it was built with ("" for none).
+  [[nodiscard]] std::string verilator_extra() const;
 
  private:
   RtlLibrary() = default;
@@ -132,6 +135,7 @@ class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
   void (*x_seed_)(int) = nullptr;            // phongsim_rtl_x_seed of an XInit::random plugin
   void (*coverage_)(const char*) = nullptr;  // phongsim_rtl_coverage_prefix of a coverage plugin
   std::filesystem::path path_;
+  std::unique_ptr<CrashRegion> crash_;  // a crash in its code is reported naming it
 };
 
 // Makes fresh DUT instances of one plugin (each with its own Verilator context).

@@ -4,6 +4,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -29,6 +30,14 @@ SearchSpec load_search(const fs::path& file) {
     const std::string key(k.str());
     if (key == "name" && v.is_string()) {
       s.name = *v.value<std::string>();
+      // It names the found configuration's file: a name, never a path elsewhere.
+      if (s.name.empty() || s.name == "." || s.name == ".." ||
+          s.name.find_first_of("/\\") != std::string::npos ||
+          std::any_of(s.name.begin(), s.name.end(),
+                      [](char c) { return static_cast<unsigned char>(c) < 0x20; })) {
+        fail_at(file, v,
+                fmt::format("name '{}': a file name (no folders), e.g. \"min_4lsb\"", s.name));
+      }
     } else if (key == "base" && v.is_string()) {
       s.base = resolve_path(file, *v.value<std::string>());
     } else if (key == "signals" && v.is_array()) {

@@ -394,24 +394,22 @@ std::optional<SynthResult> read_cached(const fs::path& path, const std::string& 
 // Temp file in the cache directory, then rename: readers see the whole file or none. A cache that
 // cannot be written costs the next caller a synthesis, not this one its result: `log` is told.
 void write_cached(const fs::path& path, const nlohmann::json& j, std::FILE* log) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path tmp = path.string() + fmt::format(".tmp.{}.{}", getpid(), counter.fetch_add(1));
-  const TempRegistration registration(tmp);
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   bool written = false;
   if (!ec) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << j.dump(2) << "\n";
-    written = static_cast<bool>(out.flush());
-  }
-  if (written) fs::rename(tmp, path, ec);
-  if (!written || ec) {
-    fs::remove(tmp, ec);
-    if (log != nullptr) {
-      fmt::print(log, "phongsim: synth: warning: cannot write the synthesis cache {}\n",
-                 path.string());
+    try {
+      OwnedTemp tmp(temp_prefix_beside(path), OwnedTemp::Kind::file);
+      const std::string text = j.dump(2) + "\n";
+      written = write(tmp.fd(), text.data(), text.size()) == static_cast<ssize_t>(text.size()) &&
+                std::rename(tmp.path().c_str(), path.c_str()) == 0;
+      if (written) tmp.release();
+    } catch (const Error&) {
     }
+  }
+  if (!written && log != nullptr) {
+    fmt::print(log, "phongsim: synth: warning: cannot write the synthesis cache {}\n",
+               path.string());
   }
 }
 

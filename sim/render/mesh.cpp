@@ -370,10 +370,40 @@ namespace {
   fail_file(path, std::string(err));
 }
 
+// tinyobjloader reads an index into an int and would wrap one beyond its range onto another
+// vertex (f 4294967297 ... names vertex 1): such an index is refused here, naming its line.
+void check_index_range(const fs::path& path, const std::string& text) {
+  std::istringstream lines(text);
+  int number = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++number;
+    const std::string_view l = trim(line);
+    if (!l.starts_with("f ") && !l.starts_with("f\t") && !l.starts_with("l ") &&
+        !l.starts_with("p ")) {
+      continue;
+    }
+    std::size_t at = 2;
+    while (at < l.size()) {
+      const std::size_t end = l.find_first_of(" \t/", at);
+      const std::string_view n = l.substr(at, end == std::string_view::npos ? end : end - at);
+      const std::string_view digits = n.starts_with('-') || n.starts_with('+') ? n.substr(1) : n;
+      const bool is_number =
+          !digits.empty() && digits.find_first_not_of("0123456789") == std::string_view::npos;
+      if (is_number && (digits.size() > 10 || std::stoll(std::string(digits)) > 2147483647LL)) {
+        fail_at(path, number, fmt::format("index {} is out of range", n));
+      }
+      if (end == std::string_view::npos) break;
+      at = end + 1;
+    }
+  }
+}
+
 }  // namespace
 
 Mesh read_obj(const fs::path& path) {
-  std::istringstream text(read_file(path, "file"));
+  const std::string bytes = read_file(path, "file");
+  check_index_range(path, bytes);
+  std::istringstream text(bytes);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
