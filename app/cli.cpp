@@ -111,7 +111,8 @@ void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
                  "gives its *.sv files; *_pkg.sv first) that implement the pipeline's port "
                  "contract (docs/your-rtl.md)")
       ->expected(1, -1);
-  cmd.add_option("--top", top, "top module of --rtl (default: the built-in top's name)");
+  cmd.add_option("--top", top,
+                 "top module of --rtl or --rtl-plugin (default: the built-in top's name)");
   cmd.add_option("--rtl-plugin", plugin,
                  "a plugin file phongsim built before (phongsim build-rtl prints its path); "
                  "refused if any source it was built from has changed since");
@@ -189,7 +190,9 @@ Loaded load(const Target& t) {
 }
 
 RtlDesign design_of(const Loaded& l, const Target& t) {
-  if (!t.top.empty() && t.rtl.empty()) throw Error("--top needs --rtl");
+  if (!t.top.empty() && t.rtl.empty() && t.plugin.empty()) {
+    throw Error("--top needs --rtl (or --rtl-plugin, for a plugin built from --rtl)");
+  }
   if (!t.plugin.empty() && !t.rtl.empty()) throw Error("give --rtl or --rtl-plugin, not both");
   std::vector<fs::path> files(t.rtl.begin(), t.rtl.end());
   return rtl_design(*l.pipeline, l.cfg, std::move(files), t.top);
@@ -206,7 +209,10 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     const auto library = RtlLibrary::open_file(t.plugin, design);
     const PipelineModel* model = l.model.get();
     rtl.make_dut = [library, model]() { return library->create(*model); };
-    rtl.label = fmt::format("plugin {}", t.plugin);
+    // It runs as it was built: its Verilator flags are the ones it records.
+    const std::string extra = library->verilator_extra();
+    rtl.label = fmt::format("plugin {}{}", t.plugin,
+                            extra.empty() ? "" : fmt::format(" (Verilator flags: {})", extra));
     rtl.options = " --rtl-plugin " + shell_quoted(t.plugin);
     return rtl;
   }

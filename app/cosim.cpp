@@ -140,6 +140,11 @@ int run(CosimCli& c) {
   for (const auto& s : sinks) sink_patterns.push_back(StallPattern::parse(s));
   const std::size_t total = configs.size() * sources.size() * sinks.size();
   c.target.check_x_init();
+  if (*c.vectors_opt && c.vectors == 0 && !c.options.directed && !*c.index_opt) {
+    throw Error(
+        "nothing to check: --vectors 0 with --no-directed gives no vectors, and a run that "
+        "checks nothing cannot pass");
+  }
   if (!c.coverage.empty() && c.target.simulator == "icarus") {
     throw Error(
         "--coverage is Verilator's (line and toggle coverage): not with --simulator icarus");

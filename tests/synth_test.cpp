@@ -85,7 +85,7 @@ TEST_F(SynthTest, LirpGenericAndIce40AreCachedByContent) {
   EXPECT_GT(r.ff, 0);
   EXPECT_TRUE(r.fits);
   EXPECT_GT(r.fmax_mhz, 0);
-  EXPECT_EQ(r.key.size(), 16U);
+  EXPECT_EQ(r.key.size(), 64U);  // SHA-256
   const fs::path entry = dir_ / "cache" / "synth" / (r.key + ".json");
   EXPECT_TRUE(fs::exists(entry));
   EXPECT_NE(ReadFile(entry).find("\"fmax_mhz\""), std::string::npos);

@@ -172,7 +172,7 @@ std::string adapter_source(const RtlDesign& d, const std::string& info) {
   return s + "})\n";
 }
 
-// The lines of a record ("name value") whose name is `field`.
+// The value of a record's first line "<field> <value>" ("" when it has none).
 std::string info_field(const std::string& info, std::string_view field) {
   std::istringstream in(info);
   std::string line;
@@ -183,6 +183,7 @@ std::string info_field(const std::string& info, std::string_view field) {
   return "";
 }
 
+// The values of all of a record's lines "<field> <value>".
 std::vector<std::string> info_lines(const std::string& info, std::string_view field) {
   std::vector<std::string> lines;
   std::istringstream in(info);
@@ -870,14 +871,16 @@ std::vector<RtlPlugin> build_rtl(std::span<const RtlDesign> designs,
       built_as[i] = q->second;
       continue;
     }
-    if (log != nullptr) {
-      fmt::print(log, "phongsim: Verilating {} ({}; cached in {})\n", designs[i].name,
-                 changed_since_last_build(designs[i], k), rtl_cache_dir().string());
-      std::fflush(log);
-    }
+    // The port check first: a design it refuses is one line, with no notice of a build.
+    const std::string why = changed_since_last_build(designs[i], k);
     queued[k.base] = pending.size();
     built_as[i] = pending.size();
     pending.push_back(prepare(designs[i], std::move(k), *models[i]));
+    if (log != nullptr) {
+      fmt::print(log, "phongsim: Verilating {} ({}; cached in {})\n", designs[i].name, why,
+                 rtl_cache_dir().string());
+      std::fflush(log);
+    }
   }
   if (!pending.empty()) build_missing(pending);
   for (std::size_t i = 0; i < designs.size(); ++i) {

@@ -67,8 +67,9 @@ std::map<fs::path, FileStamp> verilator_read(const fs::path& mdir, const std::st
       throw Error(fmt::format("{}: unreadable line '{}'", dat.string(), line));
     }
     fs::path p = line.substr(open + 1, close - open - 1);
-    // Verilator's own executable (its version is part of every key).
-    if (p.filename().string().starts_with("verilator_bin")) continue;
+    // Verilator's own executable (its version is part of every key), and names it records but
+    // could not stat (it lists the part of a path with a space before the space): no content.
+    if (p.filename().string().starts_with("verilator_bin") || (inode == 0 && size == 0)) continue;
     if (p.is_relative()) p = cwd / p;
     read[p.lexically_normal()] =
         FileStamp{size, inode, cs * 1'000'000'000 + cns, ms * 1'000'000'000 + mns};
