@@ -202,8 +202,9 @@ void on_crash(int sig, siginfo_t* info, void* context) {
   write_text(" in ");
   write_text(g_crash[owner].what);
   write_text(
-      "; a cached plugin is checked against its record before it loads: run again to "
-      "rebuild a damaged one, and report the crash if it repeats\n");
+      ": the file is damaged, or built for another machine; rebuild it (phongsim build-rtl, or "
+      "a run without --no-build for a cached one), and report the crash if a fresh build crashes "
+      "too\n");
   cleanup_and_exit(2);
 }
 

@@ -248,26 +248,21 @@ TEST_F(Cosim, OneDutSeesTheWholeStreamByDefault) {
   EXPECT_NE(one.failure.find(", vector 3000 ("), std::string::npos) << one.failure;
   EXPECT_EQ(one.duts, 1U);
 
-  const CosimReport pass = Run({}, Options());
-  ASSERT_TRUE(pass.passed) << pass.failure;
-  EXPECT_EQ(pass.duts, 1U);
-  EXPECT_EQ(pass.longest_vectors, kVectors);
-  EXPECT_EQ(pass.longest_outputs, kVectors);
-  EXPECT_NE(pass.summary().find(fmt::format("longest since reset {} vectors, {} outputs (1 DUT)",
-                                            kVectors, kVectors)),
-            std::string::npos)
-      << pass.summary();
-
+  // A pass that states `duts` DUTs, the longest of which took `n` vectors and outputs.
+  const auto passes_stating = [](const CosimReport& r, std::uint64_t duts, std::uint64_t n) {
+    ASSERT_TRUE(r.passed) << r.failure;
+    EXPECT_EQ(r.duts, duts);
+    EXPECT_EQ(r.longest_vectors, n);
+    EXPECT_EQ(r.longest_outputs, n);
+    EXPECT_NE(r.summary().find(fmt::format("longest since reset {} vectors, {} outputs ({} DUT{})",
+                                           n, n, duts, duts == 1 ? "" : "s")),
+              std::string::npos)
+        << r.summary();
+  };
+  passes_stating(Run({}, Options()), 1, kVectors);
   CosimOptions two = Options();
   two.jobs = 2;
-  const CosimReport halves = Run(wrap, two);
-  ASSERT_TRUE(halves.passed) << halves.failure;
-  EXPECT_EQ(halves.duts, 2U);
-  EXPECT_EQ(halves.longest_vectors, kVectors - kVectors / 2);
-  EXPECT_NE(halves.summary().find(fmt::format("longest since reset {} vectors, {} outputs (2 DUTs)",
-                                              kVectors - kVectors / 2, kVectors - kVectors / 2)),
-            std::string::npos)
-      << halves.summary();
+  passes_stating(Run(wrap, two), 2, kVectors - kVectors / 2);
 
   CosimOptions every = Options();
   every.reset_every = 1000;
