@@ -81,6 +81,7 @@ if p.returncode == 2:
 else:
     assert out.count("\nFAIL lirp/default") + out.startswith("FAIL") == 1, out
 EOT
+      [ $round = save ] || { echo "ok: $round"; continue; }  # the follow-up once is enough
       # The file as the run hashed it (W) never passes; the correct one does.
       cp "$tmp/wrong.sv" "$tmp/d/my_lirp.sv"
       echo "// $round" >>"$tmp/d/my_lirp.sv"
@@ -271,14 +272,15 @@ EOT
   damaged-cache)
     # 9. A damaged cached plugin is one line and a rebuild (--no-build: refused), never a crash;
     #    a truncated plugin given by hand is a clean exit naming it.
-    private_cache
-    expect_status 0 "$phongsim" cosim lirp --rtl "$good" --top my_lirp --vectors 100
-    plugin=$(ls "$PHONGSIM_CACHE"/lirp-*/plugin.so)
+    export PHONGSIM_CACHE="$tmp/cache"
+    cp -r "$build/rtl-cache" "$PHONGSIM_CACHE"  # lirp/default built already
+    plugin=$("$phongsim" build-rtl --config "$default" --no-build | sed -n 's/.*: \(.*plugin.so\)$/\1/p')
+    [ -s "$plugin" ] || fail "no cached plugin of lirp/default"
     cp "$plugin" "$tmp/whole.so"
     truncate -s $(($(stat -c %s "$plugin") / 2)) "$plugin"
     expect_error "the cached plugin of lirp is damaged .*plugin.so is [0-9]+ bytes, not the [0-9]+" \
-      "$phongsim" cosim lirp --rtl "$good" --top my_lirp --vectors 100 --no-build
-    expect_status 0 "$phongsim" cosim lirp --rtl "$good" --top my_lirp --vectors 100
+      "$phongsim" cosim --config "$default" --vectors 100 --no-build
+    expect_status 0 "$phongsim" cosim --config "$default" --vectors 100
     grep -q "phongsim: cached plugin of lirp damaged (.*), rebuilding" "$tmp/run" || fail "$(cat "$tmp/run")"
     head -c $(($(stat -c %s "$tmp/whole.so") / 2)) "$tmp/whole.so" >"$tmp/half.so"
     "$phongsim" cosim lirp --rtl-plugin "$tmp/half.so" --vectors 100 >"$tmp/run" 2>&1
