@@ -22,7 +22,7 @@ int run(const BuildCli& c) {
   std::vector<Loaded> loaded;
   std::vector<RtlDesign> designs;
   if (c.all) {
-    if (!c.target.pipeline.empty() || !c.target.config.empty() || !c.target.rtl.empty()) {
+    if (!c.target.pipeline.empty() || !c.target.config.empty() || c.target.user_rtl()) {
       throw Error(
           "--all builds every configuration in configs/; give no pipeline, --config or --rtl");
     }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 
 #include "base/error.h"
@@ -106,11 +107,20 @@ void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
   if (!rtl_options) return;
   cmd.add_flag("--no-build", no_build,
                "fail instead of Verilating RTL whose current content is not built yet");
+  command = &cmd;
   cmd.add_option("--rtl", rtl,
-                 "your RTL instead of phongsim's: SystemVerilog files and folders (a folder "
-                 "gives its *.sv files; *_pkg.sv first) that implement the pipeline's port "
-                 "contract (docs/your-rtl.md)")
+                 "your RTL instead of phongsim's, implementing the pipeline's port contract "
+                 "(docs/your-rtl.md): SystemVerilog files and folders (a folder gives its .sv and "
+                 ".v files; files that declare packages go first), headers (.svh, .vh: their "
+                 "folder is an include folder), +incdir+DIR and +define+NAME[=VALUE]")
       ->expected(1, -1);
+  cmd.add_option("-f", lists_cwd,
+                 "a file list of your RTL, its relative paths from the current folder (files, "
+                 "+incdir+, +define+, -I, -D, nested -f/-F; // and # comments, $VAR)");
+  cmd.add_option("-F", lists_here, "a file list whose relative paths are from its own folder");
+  cmd.add_option("-I", include_dirs,
+                 "an include folder of your RTL (searched before the folders of its files)");
+  cmd.add_option("-D", defines, "a macro of your RTL: NAME or NAME=VALUE");
   cmd.add_option("--top", top,
                  "top module of --rtl or --rtl-plugin (default: the built-in top's name)");
   cmd.add_option("--rtl-plugin", plugin,
@@ -156,8 +166,21 @@ std::vector<std::pair<std::string, fs::path>> Target::inputs() const {
     static const std::vector<std::string> kinds = {".sv", ".v", ".svh", ".vh", ".svi", ".inc"};
     return std::find(kinds.begin(), kinds.end(), f.extension().string()) != kinds.end();
   };
+  // The RTL as its options name it (a list that cannot be read is the command's error later).
+  RtlSources s;
+  try {
+    s = sources();
+  } catch (const Error&) {
+    for (const std::string& p : rtl) s.files.emplace_back(p);
+  }
   std::error_code ec;
-  for (const fs::path p : rtl) {
+  for (const fs::path& list : s.lists) in.emplace_back("-f", list);
+  for (const fs::path& dir : s.include_dirs) {  // what an `include may read there
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->is_regular_file(ec) && hdl(it->path())) in.emplace_back("-I", it->path());
+    }
+  }
+  for (const fs::path& p : s.files) {
     in.emplace_back("--rtl", p);
     const bool folder = fs::is_directory(p, ec);
     const fs::path dir = folder ? p : p.parent_path().empty() ? fs::path(".") : p.parent_path();
@@ -189,13 +212,72 @@ Loaded load(const Target& t) {
   return l;
 }
 
-RtlDesign design_of(const Loaded& l, const Target& t) {
-  if (!t.top.empty() && t.rtl.empty() && t.plugin.empty()) {
-    throw Error("--top needs --rtl (or --rtl-plugin, for a plugin built from --rtl)");
+RtlSources Target::sources() const {
+  RtlSources s;
+  if (command == nullptr) return s;
+  // Each option's values in the order given, taken in the order the options came.
+  std::map<const CLI::Option*, std::size_t> next;
+  for (const CLI::Option* opt : command->parse_order()) {
+    const std::vector<std::string>& values = opt->results();
+    const std::string& name = opt->get_name();
+    const std::size_t at = next[opt];
+    if (name == "--rtl") {
+      // --rtl takes all its words at once (and may come only once in a row).
+      if (at == 0) add_rtl_words(rtl, s);
+      next[opt] = values.size();
+    } else if (at < values.size()) {
+      const std::string& v = values[at];
+      next[opt] = at + 1;
+      if (name == "-f" || name == "-F") {
+        add_file_list(v, name == "-F", s);
+      } else if (name == "-I" || name == "-D") {
+        const std::vector<std::string> words{name, v};
+        add_rtl_words(words, s, name);
+      }
+    }
   }
-  if (!t.plugin.empty() && !t.rtl.empty()) throw Error("give --rtl or --rtl-plugin, not both");
-  std::vector<fs::path> files(t.rtl.begin(), t.rtl.end());
-  return rtl_design(*l.pipeline, l.cfg, std::move(files), t.top);
+  return s;
+}
+
+std::string Target::rtl_options() const {
+  std::string s;
+  if (command == nullptr || !user_rtl()) return s;
+  std::map<const CLI::Option*, std::size_t> next;
+  for (const CLI::Option* opt : command->parse_order()) {
+    const std::string& name = opt->get_name();
+    const std::vector<std::string>& values = opt->results();
+    const std::size_t at = next[opt];
+    if (name == "--rtl") {
+      if (at == 0) {
+        s += " --rtl";
+        for (const std::string& w : values) s += " " + shell_quoted(w);
+      }
+      next[opt] = values.size();
+    } else if ((name == "-f" || name == "-F" || name == "-I" || name == "-D") &&
+               at < values.size()) {
+      s += fmt::format(" {} {}", name, shell_quoted(values[at]));
+      next[opt] = at + 1;
+    }
+  }
+  if (!top.empty()) s += " --top " + shell_quoted(top);
+  return s;
+}
+
+RtlDesign design_of(const Loaded& l, const Target& t) {
+  if (!t.top.empty() && !t.user_rtl() && t.plugin.empty()) {
+    throw Error("--top needs --rtl or -f (or --rtl-plugin, for a plugin built from them)");
+  }
+  if (!t.plugin.empty() &&
+      (t.user_rtl() || !t.include_dirs.empty() || !t.defines.empty())) {
+    throw Error("give --rtl (or -f, -I, -D) or --rtl-plugin, not both: a plugin records its RTL");
+  }
+  const RtlSources sources = t.sources();
+  if (sources.files.empty() && (!sources.include_dirs.empty() || !sources.defines.empty())) {
+    throw Error(
+        "-I, -D, +incdir+ and +define+ go with your RTL (--rtl or -f): phongsim's own RTL takes "
+        "neither");
+  }
+  return rtl_design(*l.pipeline, l.cfg, sources, t.top);
 }
 
 Rtl rtl_of(const Loaded& l, const Target& t) {
@@ -213,19 +295,17 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     const std::string extra = library->verilator_extra();
     rtl.label = fmt::format("plugin {}{}", t.plugin,
                             extra.empty() ? "" : fmt::format(" (Verilator flags: {})", extra));
-    rtl.options = " --rtl-plugin " + shell_quoted(t.plugin);
+    rtl.options = " --rtl-plugin " + shell_quoted(t.plugin) +
+                  (t.top.empty() ? "" : " --top " + shell_quoted(t.top));
     return rtl;
   }
   if (t.simulator == "icarus") {
     if (!t.plugin.empty())
       throw Error("--rtl-plugin is a Verilator build: not with --simulator icarus");
     rtl.make_dut = icarus_duts(design, *l.model, stderr);
-    rtl.label = t.rtl.empty() ? fmt::format("built-in {} in Icarus Verilog", design.top)
+    rtl.label = !t.user_rtl() ? fmt::format("built-in {} in Icarus Verilog", design.top)
                               : fmt::format("{} from --rtl in Icarus Verilog", design.top);
-    rtl.options = " --simulator icarus";
-    for (const auto& p : t.rtl)
-      rtl.options += (&p == &t.rtl.front() ? " --rtl " : " ") + shell_quoted(p);
-    if (!t.top.empty()) rtl.options += " --top " + shell_quoted(t.top);
+    rtl.options = " --simulator icarus" + t.rtl_options();
     return rtl;
   }
   RtlPlugin plugin;
@@ -238,14 +318,16 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
                                            : "; line coverage") +
       (design.x_init == XInit::random ? fmt::format("; x-init random, seed {}", t.x_seed) : "");
   const std::string key = plugin.key.substr(0, 16);  // as the cache folder names it
-  if (t.rtl.empty()) {
+  if (!t.user_rtl()) {
     rtl.label = fmt::format("built-in {} ({}{})", design.top, key, x_init);
   } else {
-    rtl.label = fmt::format("{} from --rtl, {} file{} ({}{})", design.top, design.files.size(),
-                            design.files.size() == 1 ? "" : "s", key, x_init);
-    rtl.options = " --rtl";
-    for (const auto& p : t.rtl) rtl.options += " " + shell_quoted(p);
-    if (!t.top.empty()) rtl.options += " --top " + shell_quoted(t.top);
+    rtl.label = fmt::format("{} from --rtl, {} file{}{} ({}{})", design.top, design.files.size(),
+                            design.files.size() == 1 ? "" : "s",
+                            design.defines.empty()
+                                ? ""
+                                : fmt::format(", {}", fmt::join(design.defines, " ")),
+                            key, x_init);
+    rtl.options = t.rtl_options();
   }
   if (design.x_init == XInit::random) {
     rtl.options += fmt::format(" --x-init random --x-seed {}", t.x_seed);
@@ -253,9 +335,19 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
   return rtl;
 }
 
+namespace {
+std::string& invocation_text() {
+  static std::string text = "phongsim";
+  return text;
+}
+}  // namespace
+
+void set_invocation(std::string_view argv0) { invocation_text() = shell_quoted(argv0); }
+const std::string& invocation() { return invocation_text(); }
+
 CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus) {
   Rtl rtl = rtl_of(l, t);
-  return CosimSubject{std::string(l.pipeline->name),
+  CosimSubject s{std::string(l.pipeline->name),
                       l.cfg,
                       *l.model,
                       stimulus,
@@ -263,7 +355,12 @@ CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimul
                       std::move(rtl.make_dut),
                       std::move(rtl.label),
                       std::move(rtl.options),
-                      l.pipeline->contract(*l.model, l.cfg)};
+                      l.pipeline->contract(*l.model, l.cfg),
+                      invocation(),
+                      t.config.empty() ? "" : " --config " + shell_quoted(t.config),
+                      l.pipeline->stages};
+  s.traceable = t.simulator != "icarus";
+  return s;
 }
 
 std::optional<fs::path> inside(const fs::path& path, const fs::path& dir) {
@@ -419,9 +516,10 @@ std::string junit_xml(std::span<const CosimRun> runs) {
           xml_escaped(r.pipeline), xml_escaped(r.config_name), xml_escaped(r.options.source.str()),
           xml_escaped(r.options.sink.str()), r.options.seed, runs[i].seconds);
       if (!r.passed) {
-        x += fmt::format("      <failure type=\"{}\" message=\"{}\">{}</failure>\n",
-                         xml_escaped(r.failure_kind), xml_escaped(r.summary()),
-                         xml_escaped(r.failure));
+        x += fmt::format(
+            "      <failure type=\"{}\" message=\"{}\">{}</failure>\n", xml_escaped(r.failure_kind),
+            xml_escaped(r.failure_detail ? r.failure_detail->message : r.summary()),
+            xml_escaped(r.failure));
       }
       x += fmt::format("      <system-out>{}</system-out>\n    </testcase>\n",
                        xml_escaped(r.summary()));

@@ -63,7 +63,11 @@ struct Target {
   std::string config;
   std::vector<std::string> configs;  // several --config, where the command takes a list
   bool no_build = false;
-  std::vector<std::string> rtl;         // the user's RTL: files and folders (--rtl)
+  // The user's RTL: --rtl's words (files, folders, +incdir+, +define+), file lists (-f, -F),
+  // include folders (-I) and defines (-D); sim/cosim/rtl_args.h. sources() reads them in the
+  // order given.
+  std::vector<std::string> rtl;
+  std::vector<std::string> lists_cwd, lists_here, include_dirs, defines;  // -f, -F, -I, -D
   std::string top;                      // its top module (--top; default: the built-in top's name)
   std::string plugin;                   // a plugin file given by hand (--rtl-plugin)
   std::string simulator = "verilator";  // or icarus (--simulator)
@@ -72,10 +76,18 @@ struct Target {
   CLI::Option* x_seed_opt = nullptr;
   std::string coverage_prefix;  // cosim --coverage: the coverage plugin, files under this prefix
   bool coverage_toggle = true;  // ... with toggle points (not with --no-toggle-coverage)
+  const CLI::App* command = nullptr;  // where the options were added: their order as given
 
-  // `rtl_options`: also --rtl, --top, --rtl-plugin and --no-build. `many_configs`: --config may
-  // be given several times (into `configs`).
+  // `rtl_options`: also --rtl, -f, -F, -I, -D, --top, --rtl-plugin and --no-build.
+  // `many_configs`: --config may be given several times (into `configs`).
   void add_options(CLI::App& cmd, bool rtl_options = true, bool many_configs = false);
+  // Whether the user gave RTL of their own (--rtl or a file list).
+  [[nodiscard]] bool user_rtl() const { return !rtl.empty() || !lists_cwd.empty() || !lists_here.empty(); }
+  // The user's RTL as one set, in the order the options were given (files, lists read).
+  [[nodiscard]] RtlSources sources() const;
+  // The options that name the user's RTL again, shell-quoted, in the order given
+  // (" --rtl a.sv +incdir+inc -f files.f -D X=1"); "" for phongsim's RTL.
+  [[nodiscard]] std::string rtl_options() const;
   // --simulator, --x-init and --x-seed, for the commands that run the RTL vector by vector
   // (cosim, eval).
   void add_simulator_option(CLI::App& cmd);
@@ -126,6 +138,11 @@ using Progress = std::function<void(std::string_view, std::uint64_t, std::uint64
 // output set), or nothing.
 [[nodiscard]] std::optional<std::filesystem::path> inside(const std::filesystem::path& path,
                                                           const std::filesystem::path& dir);
+
+// The program as this process was run (argv[0], shell-quoted), for the commands phongsim prints
+// to be pasted as they are; main() sets it.
+void set_invocation(std::string_view argv0);
+[[nodiscard]] const std::string& invocation();
 
 // Whether progress_line() shows anything (stderr is a terminal).
 [[nodiscard]] bool progress_shown();

@@ -63,6 +63,18 @@ nlohmann::ordered_json to_json(const CosimFailure& f, const std::string& report)
          {"got", c.got ? to_json(*c.got) : nlohmann::ordered_json(nullptr)},
          {"differs", c.differs}});
   }
+  nlohmann::ordered_json stages = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < f.stages.size(); ++i) {
+    nlohmann::ordered_json v = to_json(f.stages[i]);
+    if (i < f.sightings.size()) {  // the design's signals of the stage's name
+      nlohmann::ordered_json signals = nlohmann::ordered_json::array();
+      for (const StageSighting::Signal& g : f.sightings[i].signals) {
+        signals.push_back({{"path", g.path}, {"held", g.held}});
+      }
+      v["signals"] = signals;
+    }
+    stages.push_back(std::move(v));
+  }
   const auto optional = [](const std::optional<std::uint64_t>& v) {
     return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
   };
@@ -74,6 +86,12 @@ nlohmann::ordered_json to_json(const CosimFailure& f, const std::string& report)
                                                      : nlohmann::ordered_json(nullptr)},
           {"inputs", inputs},
           {"outputs", outputs},
+          {"stages", stages},
+          {"first_differing_stage", f.first_differing_stage.empty()
+                                        ? nlohmann::ordered_json(nullptr)
+                                        : nlohmann::ordered_json(f.first_differing_stage)},
+          {"contract", f.contract.empty() ? nlohmann::ordered_json(nullptr)
+                                          : nlohmann::ordered_json(f.contract)},
           {"message", f.message},
           {"in_measurement_run", f.in_measurement_run},
           {"report", report}};

@@ -27,7 +27,7 @@ int run_eval(const EvalCli& c) {
   DutFactory make_dut;
   if (c.backend == "rtl") {
     make_dut = rtl_of(l, c.target).make_dut;
-  } else if (!c.target.rtl.empty() || !c.target.plugin.empty() ||
+  } else if (c.target.user_rtl() || !c.target.plugin.empty() ||
              c.target.simulator != "verilator") {
     throw Error("--rtl, --rtl-plugin and --simulator need --backend rtl");
   } else if (c.target.x_init != "zero" || *c.target.x_seed_opt) {

@@ -21,6 +21,7 @@ int run(const LintCli& c) {
   const RtlDesign d = design_of(l, t);
   std::vector<std::string> argv{"verilator", "--lint-only", "-Wall", "--top-module", d.top};
   for (const RtlParam& p : d.params) argv.push_back(fmt::format("-G{}={}", p.name, p.value));
+  for (const std::string& f : rtl_source_flags(d)) argv.push_back(f);
   for (const auto& f : d.files) argv.push_back(f.string());
   const ProcessResult r = run_process(argv);
   std::FILE* const out = json.text();

@@ -10,6 +10,7 @@
 #include <new>
 #include <string_view>
 
+#include "app/cli.h"
 #include "app/commands.h"
 #include "base/error.h"
 #include "base/process.h"
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
   add_list(app, action);
   add_contract(app, action);
 
+  phongsim::cli::set_invocation(argc > 0 ? argv[0] : "phongsim");
   try {
     install_tool_progress();
     // Housekeeping first: temporaries of phongsim processes that were killed outright.

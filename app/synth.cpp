@@ -85,7 +85,7 @@ nlohmann::ordered_json result_json(const Loaded& l, const RtlDesign& d, const Sy
 // --all: every configuration in configs/ (of the pipeline given, else of every pipeline).
 int run_all(const SynthCli& c) {
   if (!c.target.config.empty()) throw Error("--all and --config exclude each other");
-  if (!c.target.rtl.empty() || !c.target.plugin.empty() || !c.target.top.empty()) {
+  if (c.target.user_rtl() || !c.target.plugin.empty() || !c.target.top.empty()) {
     throw Error("--all synthesizes the built-in RTL: no --rtl, --top or --rtl-plugin");
   }
   if (c.check && !c.json.empty()) throw Error("--check and --json exclude each other");
@@ -152,13 +152,31 @@ int run(const SynthCli& c) {
     fmt::print("{} ({}): synthesizes, no latches\n", l.cfg.origin(), d.top);
     return 0;
   }
-  const SynthResult r =
-      synthesize(d, l.cfg.origin(), SynthOptions{.generic = true, .ice40 = c.ice40}, stderr);
+  const SynthOptions options{.generic = true, .ice40 = c.ice40};
+  const SynthResult r = synthesize(d, l.cfg.origin(), options, stderr);
   print_summary(json.text(), l.cfg.origin(), d, r, c.ice40);
   print_stages(json.text(), r);
   nlohmann::ordered_json j = json_document("synth");
   const nlohmann::ordered_json result = result_json(l, d, r, c.ice40);
   for (const auto& [k, v] : result.items()) j[k] = v;
+  j["builtin"] = nullptr;
+  if (c.target.user_rtl()) {  // your design against phongsim's, same configuration
+    const RtlDesign ours = rtl_design(*l.pipeline, l.cfg);
+    const SynthResult b = synthesize(ours, l.cfg.origin(), options, stderr);
+    const auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
+    std::string line = fmt::format(
+        "against phongsim's {}: {} vs {} cells ({:.2f}x), ~{} vs ~{} transistors ({:.2f}x), depth "
+        "{} vs {} levels",
+        ours.top, r.cells, b.cells, ratio(r.cells, b.cells), r.transistors, b.transistors,
+        ratio(r.transistors, b.transistors), r.depth, b.depth);
+    if (c.ice40) {
+      line += fmt::format("; iCE40 {} vs {} LUT4, fmax {} vs {} MHz", r.lut4, b.lut4,
+                          r.fits ? fmt::format("{:.1f}", r.fmax_mhz) : "-",
+                          b.fits ? fmt::format("{:.1f}", b.fmax_mhz) : "-");
+    }
+    fmt::print(json.text(), "{}\n", line);
+    j["builtin"] = result_json(l, ours, b, c.ice40);
+  }
   json.write(j);
   return 0;
 }

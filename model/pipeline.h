@@ -21,6 +21,12 @@ struct Field {
   fx::Format fmt;
 };
 
+// One stage's value for one input, named as in the RTL and the pipeline's spec.
+struct StageValue {
+  std::string name;
+  fx::Fixed value;
+};
+
 class PipelineModel {
  public:
   virtual ~PipelineModel() = default;

@@ -323,10 +323,11 @@ EOT
     cp "$default" "$tmp/we ird/c\$onfig.toml"
     expect_status 1 "$phongsim" cosim --config "$tmp/we ird/c\$onfig.toml" --rtl "$good" \
       "$tmp/we ird/it's.sv" --top my_lirp_wrong --vectors 2000
-    line=$(sed -n 's/^  reproduce: phongsim //p' "$tmp/run")
+    line=$(sed -n 's/^  reproduce: //p' "$tmp/run")
     [ -n "$line" ] || fail "no reproduce line: $(cat "$tmp/run")"
-    eval "set -- $line"
-    expect_status 1 "$phongsim" "$@"
+    eval "set -- $line"  # as printed, the program first
+    [ "$1" = "$phongsim" ] || fail "the reproduce line does not begin with the program run: $line"
+    expect_status 1 "$@"
     grep -q "^FAIL lirp/c\$onfig: " "$tmp/run" || fail "the pasted reproduce line: $(cat "$tmp/run")"
     printf 'name = "../../escaped"\nbase = "%s"\nsignals = ["p"]\n' "$default" >"$tmp/s.toml"
     expect_error "name '../../escaped': a file name" "$phongsim" sweep search "$tmp/s.toml" --out "$tmp/found.toml"

@@ -331,6 +331,111 @@ EOT
       "$phongsim" cosim lirp --rtl-plugin "$plugin" --vectors 100
     ;;
 
+  file-lists)
+    # docs/your-rtl.md, "File lists, include folders and defines": examples/your-rtl/tree through
+    # -F, -f, --rtl with +incdir+, nested lists with comments and $VAR; an edited include or a
+    # define is a rebuild, never an old result; a missing include folder is one line naming the
+    # include; the same sources go to lint, synth and Icarus; bad lists are one line each.
+    export PHONGSIM_CACHE="$tmp/cache"  # its own: every edit below is a build of its own
+    mkdir -p "$PHONGSIM_CACHE"
+    cp -r "$build/rtl-cache"/runtime-* "$PHONGSIM_CACHE/"
+    cp -r "$src/examples/your-rtl" "$tmp/ex"
+    t="$tmp/ex/tree"
+    run() { "$phongsim" cosim lirp --top my_lirp_top --vectors 2000 "$@"; }
+    run -F "$t/lists/files.f" >"$tmp/a" 2>&1 || fail "-F: $(cat "$tmp/a")"
+    grep -q "^PASS lirp/default: .*RTL: my_lirp_top from --rtl, 3 files" "$tmp/a" || fail "$(cat "$tmp/a")"
+    # -f: paths from the current folder; a nested -F with comments and an environment variable.
+    printf '%s\n' "// outer list" "-F \${TREE}/lists/files.f  # the tree's own" >"$tmp/outer.f"
+    (cd "$tmp" && TREE="$t" "$phongsim" cosim lirp -f outer.f --top my_lirp_top --vectors 2000 --no-build) \
+      >"$tmp/b" 2>&1 || fail "nested -f/-F with \$VAR: $(cat "$tmp/b")"
+    (cd "$t" && run --rtl src/my_lirp_top.sv src/my_lirp_modes.sv ../my_lirp.sv +incdir+inc --no-build) \
+      >"$tmp/c" 2>&1 || fail "--rtl with +incdir+: $(cat "$tmp/c")"
+    # Only the included file changes: refused under --no-build, naming it; rebuilt otherwise.
+    echo "// an edit" >>"$t/inc/my_lirp_top.svh"
+    expect_error "a file it includes changed: my_lirp_top.svh" run -F "$t/lists/files.f" --no-build
+    run -F "$t/lists/files.f" >"$tmp/d" 2>&1 || fail "rebuild after an include edit: $(cat "$tmp/d")"
+    grep -q "Verilating lirp (a file it includes changed: my_lirp_top.svh" "$tmp/d" || fail "$(cat "$tmp/d")"
+    # A define: its own build, and the bug it selects fails; the reproduce line, pasted as printed,
+    # carries the list and the define.
+    expect_error 'its defines changed: now "MY_LIRP_TIES_UP=1"' run -F "$t/lists/files.f" -D MY_LIRP_TIES_UP=1 --no-build
+    run -F "$t/lists/files.f" -D MY_LIRP_TIES_UP=1 >"$tmp/e" 2>&1
+    [ $? -eq 1 ] || fail "the define's bug did not fail: $(cat "$tmp/e")"
+    repro=$(sed -n 's/^  reproduce: //p' "$tmp/e")
+    grep -q -- "-F $t/lists/files.f -D MY_LIRP_TIES_UP=1 --top my_lirp_top" <<<"$repro" || fail "reproduce: $repro"
+    eval "$repro" >"$tmp/f" 2>&1
+    [ $? -eq 1 ] && [ "$(grep '^MISMATCH' "$tmp/f")" = "$(grep '^MISMATCH' "$tmp/e")" ] ||
+      fail "the reproduce line: $(cat "$tmp/f")"
+    # Without the include folder: one line naming the include.
+    grep -v incdir "$t/lists/files.f" >"$t/lists/noinc.f"
+    expect_error "Cannot find include file: my_lirp_top.svh" run -F "$t/lists/noinc.f"
+    # The same sources through lint, synth (against phongsim's) and Icarus.
+    "$phongsim" lint --config "$default" -F "$t/lists/files.f" --top my_lirp_top >"$tmp/g" 2>&1 ||
+      fail "lint: $(cat "$tmp/g")"
+    "$phongsim" synth --config "$default" -F "$t/lists/files.f" --top my_lirp_top >"$tmp/h" 2>&1 ||
+      fail "synth: $(cat "$tmp/h")"
+    grep -q "^against phongsim's lirp_unit: [0-9]* vs [0-9]* cells" "$tmp/h" || fail "synth: $(cat "$tmp/h")"
+    "$phongsim" cosim lirp -F "$t/lists/files.f" --top my_lirp_top --vectors 100 --simulator icarus \
+      >"$tmp/i" 2>&1 || fail "icarus: $(cat "$tmp/i")"
+    # Bad lists and words: one line each.
+    echo "-v lib.sv" >"$tmp/lib.f"
+    expect_error "lib.f:1: -v: library files and folders are not read" run -f "$tmp/lib.f"
+    echo '$NOT_SET_ANYWHERE/a.sv' >"$tmp/var.f"
+    expect_error 'var.f:1: \$NOT_SET_ANYWHERE is not set' run -f "$tmp/var.f"
+    echo "-F self.f" >"$tmp/self.f"
+    expect_error "self.f includes itself" run -F "$tmp/self.f"
+    expect_error "nowhere.f: cannot read the file list" run -f "$tmp/nowhere.f"
+    expect_error "no such include folder" run --rtl "$t/src" +incdir+"$tmp/nope"
+    expect_error "'1X' is not a macro name" run -F "$t/lists/files.f" -D 1X
+    expect_error "-I, -D, \+incdir\+ and \+define\+ go with your RTL" "$phongsim" cosim lirp -D X=1
+    ;;
+
+  stage-report)
+    # docs/your-rtl.md, "Stage reports and waveforms": phongsim's LIRP with one register broken
+    # (delta_q's LSB flipped) fails with a one-line message naming the first stage to differ,
+    # the stage table names the register that never held the model's value, and the waveform
+    # (read back here) holds the vector indices, expected fields and mismatch flags.
+    mkdir "$tmp/mut"
+    cp "$src"/rtl/common/*.sv "$src"/rtl/lirp/*.sv "$tmp/mut/"
+    sed -i 's/      delta_q <= delta_d;/      delta_q <= delta_d ^ 1;/' "$tmp/mut/lirp_core.sv"
+    grep -q 'delta_q <= delta_d ^ 1;' "$tmp/mut/lirp_core.sv" || fail "the mutation did not apply"
+    "$phongsim" cosim lirp --rtl "$tmp/mut" --top lirp_unit --json "$tmp/r.json" \
+      --trace "$tmp/w.vcd" >"$tmp/out" 2>&1
+    [ $? -eq 1 ] || fail "the broken register passed: $(cat "$tmp/out")"
+    grep -q "delta_x .*NEVER on top.lirp_unit.u_core.delta_q   <-- first to differ" "$tmp/out" ||
+      fail "stage table: $(cat "$tmp/out")"
+    python3 - "$tmp/r.json" "$tmp/w.vcd" <<'EOT' || fail "JSON or waveform: $(cat "$tmp/out")"
+import json, re, sys
+f = json.load(open(sys.argv[1]))["runs"][0]["failure"]
+assert f["first_differing_stage"] == "delta_x", f["first_differing_stage"]
+assert "first stage to differ: delta_x" in f["message"], f["message"]
+delta = f["stages"][0]
+assert delta["field"] == "delta_x" and {"path": "top.lirp_unit.u_core.delta_q", "held": False} in delta["signals"], delta
+# The waveform: the phongsim scope's variables, then their values at the failing output's time.
+ids, values, time, at_failure = {}, {}, None, None
+scope = []
+for line in open(sys.argv[2]):
+    w = line.split()
+    if w[:1] == ["$scope"]: scope.append(w[2])
+    elif w[:1] == ["$upscope"]: scope.pop()
+    elif w[:1] == ["$var"] and scope == ["phongsim"]: ids[w[3]] = w[4]
+    elif line.startswith("#"):
+        if time == 2 * f["cycle"]: at_failure = dict(values)
+        time = int(line[1:])
+    elif w and w[0][0] == "b" and w[1] in ids: values[ids[w[1]]] = w[0][1:]
+    elif w and w[0][0] in "01x" and w[0][1:] in ids: values[ids[w[0][1:]]] = w[0][0]
+if time == 2 * f["cycle"]: at_failure = dict(values)
+for name in ["in_accept", "in_vector", "out_take", "out_vector", "out_index", "mismatch",
+             "expected_p_x", "mismatch_p_x", "expected_p_y", "mismatch_p_y"]:
+    assert name in ids.values(), (name, ids)
+assert at_failure, "no values at the failing output's time"
+assert at_failure["out_take"] == "1" and at_failure["mismatch"] == "1", at_failure
+assert int(at_failure["out_vector"], 2) == f["vector_index"], at_failure
+x = next(o for o in f["outputs"] if o["field"] == "p_x")
+assert at_failure["mismatch_p_x"] == ("1" if x["differs"] else "0"), at_failure
+assert int(at_failure["expected_p_x"], 2) == x["expected"]["raw"] % (1 << 12), at_failure
+EOT
+    ;;
+
   your-rtl)
     # docs/your-rtl.md's commands: the independent LIRP passes every configuration under stalls
     # (through the CI script, JUnit out); the wrong one fails with a first-mismatch report whose
@@ -362,8 +467,8 @@ failures = root.findall(".//testcase/failure")
 assert len(failures) == 1 and failures[0].get("type") == "mismatch", failures
 assert "MISMATCH at cycle" in failures[0].text
 PY
-    repro=$(sed -n 's/^  reproduce: phongsim //p' "$tmp/wrong")
-    (cd "$src" && eval "\"\$phongsim\" $repro") >"$tmp/again" 2>&1
+    repro=$(sed -n 's/^  reproduce: //p' "$tmp/wrong")  # pasted as printed
+    (cd "$src" && eval "$repro") >"$tmp/again" 2>&1
     [ $? -eq 1 ] || fail "the reproduce command did not fail: $repro"
     [ "$(grep '^MISMATCH' "$tmp/again")" = "$(grep '^MISMATCH' "$tmp/wrong")" ] ||
       fail "the reproduce command failed differently: $(cat "$tmp/again")"
@@ -374,7 +479,7 @@ PY
     sed 's/in_a_i/in_alpha_i/g' "$ex/my_lirp.sv" >"$tmp/alpha_lirp.sv"
     expect_error "top my_lirp has no port in_a_i" \
       "$phongsim" cosim lirp --rtl "$tmp/alpha_lirp.sv" --top my_lirp
-    expect_error "--top needs --rtl" "$phongsim" cosim lirp --top my_lirp
+    expect_error "--top needs --rtl or -f" "$phongsim" cosim lirp --top my_lirp
     ;;
 
   render)

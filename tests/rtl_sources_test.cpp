@@ -72,7 +72,7 @@ TEST(VerilatorRead, ListsEveryFileItReadWithItsStamp) {
         "module top(input logic [3:0] a, output logic [3:0] b);\n`include \"inc/w.svh\"\n"
         "assign b = a + W[3:0];\nendmodule\n");
   const std::vector<fs::path> files{dir.path() / "rtl" / "top.sv"};
-  const std::vector<fs::path> dirs = rtl_include_dirs(files);
+  const std::vector<fs::path> dirs = rtl_include_dirs({}, files);
   ASSERT_EQ(dirs, std::vector<fs::path>{dir.path() / "rtl"});
   fs::create_directories(dir.path() / "run");
   const ProcessResult r =
@@ -101,7 +101,7 @@ TEST(Includes, ResolveInTheirFolderUnlessShadowed) {
   write(b / "y.sv", "");
   write(b / "sub" / "w.svh", "localparam int W = 1;\n");
   const std::vector<fs::path> dirs =
-      rtl_include_dirs(std::vector<fs::path>{a / "x.sv", b / "y.sv"});
+      rtl_include_dirs({}, std::vector<fs::path>{a / "x.sv", b / "y.sv"});
   const IncludedFile inc = locate_include(hash_file(b / "sub" / "w.svh"), dirs);
   EXPECT_EQ(inc.dir, 1);
   EXPECT_EQ(inc.rel, fs::path("sub") / "w.svh");

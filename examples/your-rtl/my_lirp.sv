@@ -44,9 +44,8 @@ module my_lirp #(
   typedef logic signed [EW-1:0] wide_t;
 
   function automatic wide_t widen(input logic [63:0] bits, input int width, input bit is_signed);
-    wide_t v = '0;
-    for (int i = 0; i < EW; i++) v[i] = i < width ? bits[i] : (is_signed ? bits[width-1] : 1'b0);
-    return v;
+    widen = '0;
+    for (int i = 0; i < EW; i++) widen[i] = i < width ? bits[i] : (is_signed ? bits[width-1] : 1'b0);
   endfunction
 
   // One component: round the exact value (PF + AF fraction bits) to OF bits, then overflow.
@@ -57,17 +56,17 @@ module my_lirp #(
     end else begin
       lo   = exact >>> Drop;
       rem  = exact - (lo <<< Drop);
-      half = wide_t'(1) <<< (Drop - 1);
+      half = EW'(1) <<< (Drop - 1);
       case (OutRound)
         0:       q = lo;
-        1:       q = lo + wide_t'(rem >= half);
-        default: q = lo + wide_t'(rem > half || (rem == half && (lo[0] || TiesUp)));
+        1:       q = lo + EW'(rem >= half);
+        default: q = lo + EW'(rem > half || (rem == half && (lo[0] || TiesUp)));
       endcase
     end
-    min_v = OS != 0 ? -(wide_t'(1) <<< (OW - 1)) : '0;
-    max_v = OS != 0 ? (wide_t'(1) <<< (OW - 1)) - 1 : (wide_t'(1) <<< OW) - 1;
+    min_v = OS != 0 ? -(EW'(1) <<< (OW - 1)) : '0;
+    max_v = OS != 0 ? (EW'(1) <<< (OW - 1)) - 1 : (EW'(1) <<< OW) - 1;
     if (OutOverflow != 0) q = q < min_v ? min_v : (q > max_v ? max_v : q);
-    return q[OW-1:0];
+    requantize = q[OW-1:0];
   endfunction
 
   // One stall signal: everything moves when the output register is free or being taken.
@@ -99,7 +98,7 @@ module my_lirp #(
     logic [OW-1:0] p_q;
     always_ff @(posedge clk_i) begin
       if (move) begin
-        m0_q  <= ((wide_t'(1) <<< AF) - widen(64'(a_q), AW, AS != 0))
+        m0_q  <= ((EW'(1) <<< AF) - widen(64'(a_q), AW, AS != 0))
                  * widen(64'(p0_q[c*PW+:PW]), PW, PS != 0);
         m1_q  <= widen(64'(a_q), AW, AS != 0) * widen(64'(p1_q[c*PW+:PW]), PW, PS != 0);
         sum_q <= m0_q + m1_q;

@@ -6,14 +6,17 @@
 #include <atomic>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 #include "base/error.h"
+#include "base/temporaries.h"
 #include "base/text.h"
 #include "model/plan.h"
 #include "sim/cosim/harness.h"
+#include "sim/cosim/waveform.h"
 
 namespace phongsim {
 namespace {
@@ -429,7 +432,61 @@ struct Phase {
   std::uint64_t latency_max = 0;
   std::optional<std::uint64_t> failing_index;
   ContractCounts contract;
+  WaveNotes notes;  // the handshakes in the waveform's cycles, when the run wrote one
 };
+
+// Records the handshakes of the cycles [ho.trace_from, ho.trace_to] (the waveform's) in `notes`:
+// accepts with their vector index (from `first`), outputs with their number in the run and the
+// values taken; complete_notes adds what the model expected.
+void note_handshakes(WaveNotes& notes, const HarnessOptions& ho, std::uint64_t first,
+                     std::size_t n_out, std::uint64_t& accepted, std::uint64_t& taken,
+                     std::span<const std::uint64_t> accepts, std::span<const std::int64_t> out,
+                     std::span<const std::uint64_t> cycles) {
+  const auto shown = [&](std::uint64_t c) { return c >= ho.trace_from && c <= ho.trace_to; };
+  for (const std::uint64_t c : accepts) {
+    if (shown(c)) notes.accepts.push_back({c, first + accepted});
+    ++accepted;
+  }
+  for (std::size_t j = 0; j < cycles.size(); ++j) {
+    if (shown(cycles[j])) {
+      WaveNotes::Output o;
+      o.cycle = cycles[j];
+      o.number = taken;
+      o.got.assign(out.begin() + static_cast<std::ptrdiff_t>(j * n_out),
+                   out.begin() + static_cast<std::ptrdiff_t>((j + 1) * n_out));
+      notes.outputs.push_back(std::move(o));
+    }
+    ++taken;
+  }
+}
+
+// The model's outputs for the noted ones: a fresh model from `first` (the DUT's reset) numbers
+// every output it gives, and which vector gives it.
+void complete_notes(const CosimSubject& s, std::uint64_t seed, std::uint64_t first,
+                    std::uint64_t accepted, WaveNotes& notes) {
+  notes.fields = s.model.outputs();
+  if (notes.outputs.empty()) return;
+  const std::unique_ptr<PipelineModel> model = s.model.clone();
+  model->reset();
+  const std::size_t n_out = notes.fields.size();
+  std::vector<std::int64_t> in(s.model.inputs().size()), out;
+  std::uint64_t number = 0;
+  auto next = notes.outputs.begin();
+  for (std::uint64_t v = first; v < first + accepted && next != notes.outputs.end(); ++v) {
+    s.stimulus.vector(seed, v, in);
+    out.clear();
+    const std::size_t n = model->eval(in, out);
+    for (; next != notes.outputs.end() && next->number < number + n; ++next) {
+      const std::size_t k = next->number - number;
+      next->vector = v;
+      next->index = k;
+      next->expected.assign(out.begin() + static_cast<std::ptrdiff_t>(k * n_out),
+                            out.begin() + static_cast<std::ptrdiff_t>((k + 1) * n_out));
+    }
+    number += n;
+  }
+  for (; next != notes.outputs.end(); ++next) next->owed = false;
+}
 
 // Runs vectors [first, first + count) (or the one in `only`) through a fresh DUT.
 Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus,
@@ -441,9 +498,14 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus,
   Scoreboard board(model, stimulus, contract, o.seed, first, count);
   HarnessHooks hooks;
   hooks.next_inputs = [&](std::uint64_t pos) { return board.next(pos); };
-  std::uint64_t done = 0, reported = 0;
+  std::uint64_t done = 0, reported = 0, noted_inputs = 0, noted_outputs = 0;
+  const bool tracing = !ho.trace_path.empty();
   hooks.check = [&](std::span<const std::uint64_t> accepted, std::span<const std::int64_t> out,
                     std::span<const std::uint64_t> cycles) {
+    if (tracing) {
+      note_handshakes(phase.notes, ho, first, model.outputs().size(), noted_inputs,
+                      noted_outputs, accepted, out, cycles);
+    }
     if (progress) {
       done += accepted.size();
       if (done - reported >= 4096) {
@@ -562,6 +624,7 @@ struct MainRun {
   std::uint64_t duts = 0;                             // shards run up to it
   std::uint64_t longest_inputs = 0, longest_outputs = 0, drain = 0;  // the most of one shard
   ContractCounts contract;                                           // likewise
+  Phase first;  // shard 0's, which alone writes a passing run's waveform (notes and counts)
 };
 
 // Runs the shards in order, `o.jobs` at a time, up to the first that fails (the lowest-numbered:
@@ -649,6 +712,7 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
     run.contract.add(phases[k].contract);
   }
   run.duts = last + 1;
+  if (last > 0) run.first = std::move(phases[0]);
   run.last = std::move(phases[last]);
   run.shard = shards[last];
   return run;
@@ -656,8 +720,8 @@ MainRun run_shards(const CosimSubject& s, const CosimOptions& o, const HarnessOp
 
 std::string repro_command(const CosimReport& r, std::optional<std::uint64_t> only) {
   const auto& o = r.options;
-  std::string cmd = fmt::format("phongsim cosim --pipeline {} --config {}{} --seed {}", r.pipeline,
-                                shell_quoted(r.config_path), r.rtl_options, o.seed);
+  std::string cmd = fmt::format("{} cosim --pipeline {}{}{} --seed {}", r.command, r.pipeline,
+                                r.config_option, r.rtl_options, o.seed);
   if (only) {
     cmd += fmt::format(" --vector-index {}", *only);
   } else {
@@ -686,6 +750,128 @@ std::string failure_context(const CosimReport& r, std::optional<std::uint64_t> o
     s += fmt::format("  this vector alone: {}\n", repro_command(r, failing_index));
   }
   return s;
+}
+
+// The failing vector beyond its ports: whether it lies inside the input contract, and the
+// model's stage values (returned, and in `d`), from a fresh model and checker that have seen the
+// vectors since the DUT's reset (from `first`; none when vectors are independent).
+std::vector<StageValue> describe_vector(const CosimSubject& s, std::uint64_t seed,
+                                        std::uint64_t first, CosimFailure& d) {
+  if (d.kind != "mismatch" || !d.vector) return {};
+  const std::uint64_t index = *d.vector;
+  std::vector<std::int64_t> in(s.model.inputs().size()), out;
+  const std::unique_ptr<PipelineModel> model = s.model.clone();
+  model->reset();
+  InputContract contract = s.contract;  // a copy is a checker of its own, from reset
+  for (std::uint64_t v = s.independent_vectors ? index : first; v < index; ++v) {
+    s.stimulus.vector(seed, v, in);
+    if (contract.defined()) (void)contract.check(in);
+    out.clear();
+    (void)model->eval(in, out);
+  }
+  s.stimulus.vector(seed, index, in);
+  if (contract.defined()) {
+    const int c = contract.check(in);
+    d.contract = c == InputContract::kIn ? "inside" : contract.clauses()[static_cast<std::size_t>(c)];
+  }
+  if (!s.stages) return {};
+  std::vector<StageValue> values = s.stages(*model, in);
+  for (const StageValue& v : values) {
+    d.stages.push_back(
+        {v.name, v.value.fmt.str(), v.value.raw, fx::to_real(v.value.raw, v.value.fmt)});
+  }
+  return values;
+}
+
+// The report's lines for describe_vector's findings (and the stage sightings, when looked for).
+std::string vector_text(const CosimFailure& d) {
+  std::string text;
+  if (d.contract == "inside") {
+    text += "  input contract: inside\n";
+  } else if (!d.contract.empty()) {
+    text += fmt::format(
+        "  input contract: outside ({}): the accuracy claims do not hold there, bit-exactness "
+        "does\n",
+        d.contract);
+  }
+  if (d.stages.empty()) return text;
+  text += "  the model's stages (named as in the pipeline's spec)";
+  text += d.sightings.empty() ? ":\n" : ", and the design's signals of those names:\n";
+  for (std::size_t i = 0; i < d.stages.size(); ++i) {
+    const FieldValue& v = d.stages[i];
+    std::string line = fmt::format("    {:<8} {:>7}  {}", v.name, v.format,
+                                   phongsim::value_text(v.raw, fx::Format::parse(v.format)));
+    if (i < d.sightings.size() && !d.sightings[i].signals.empty()) {
+      std::vector<std::string> held, never;
+      for (const StageSighting::Signal& g : d.sightings[i].signals) {
+        (g.held ? held : never).push_back(g.path);
+      }
+      line = fmt::format("{:<48}", line);
+      if (!held.empty()) line += fmt::format("  held by {}", fmt::join(held, ", "));
+      if (!never.empty()) line += fmt::format("  NEVER on {}", fmt::join(never, ", "));
+      if (v.name == d.first_differing_stage) line += "   <-- first to differ";
+    }
+    text += line + "\n";
+  }
+  if (!d.sightings.empty() && d.first_differing_stage.empty()) {
+    bool any = false;
+    for (const StageSighting& g : d.sightings) any = any || !g.signals.empty();
+    text += any ? "  every stage signal held the model's value: the difference is after them\n"
+                : "  no signal of the design is named after a stage (docs/your-rtl.md: stage "
+                  "reports)\n";
+  }
+  return text;
+}
+
+// Looks for the model's stages in the traced failing run's waveform `fst` (cycles from
+// `trace_from`): from the failing vector's acceptance (or the window's start) to the failing
+// output. The first stage, in the spec's order, that has signals none of which held its value is
+// the first to differ.
+void locate_stages(const std::string& fst, const std::vector<StageValue>& values,
+                   const WaveNotes& notes, std::uint64_t trace_from, CosimFailure& d) {
+  std::uint64_t from = trace_from;
+  for (const WaveNotes::Accept& a : notes.accepts) {
+    if (a.vector == *d.vector) from = a.cycle;
+  }
+  d.sightings = find_stages(fst, values, 2 * from, 2 * d.cycle + 1);
+  for (const StageSighting& g : d.sightings) {
+    if (g.missed()) {
+      d.first_differing_stage = g.stage;
+      break;
+    }
+  }
+}
+
+// One line saying what failed and where (CosimFailure::message).
+std::string failure_message(const CosimFailure& d, const std::string& harness) {
+  if (d.kind == "mismatch" && d.vector) {
+    std::string fields;
+    const FieldComparison* first = nullptr;
+    int differ = 0;
+    for (const FieldComparison& f : d.outputs) {
+      if (!f.differs) continue;
+      ++differ;
+      if (first == nullptr) first = &f;
+    }
+    if (first != nullptr && first->expected && first->got) {
+      fields = fmt::format("{} is {} ({}) where the model gives {} ({})", first->name,
+                           first->got->raw, first->got->real, first->expected->raw,
+                           first->expected->real);
+      if (differ > 1) fields += fmt::format(", and {} more field{} differ", differ - 1,
+                                            differ == 2 ? "" : "s");
+    }
+    return fmt::format(
+        "mismatch at cycle {}, vector {} (output {} of {}): {}{}{}", d.cycle, *d.vector,
+        d.output.value_or(0) + 1, d.outputs_of_vector, fields,
+        d.first_differing_stage.empty()
+            ? ""
+            : fmt::format("; first stage to differ: {}", d.first_differing_stage),
+        d.contract.empty() ? "" : fmt::format("; input contract: {}", d.contract));
+  }
+  if (d.kind == "unexpected output") {
+    return fmt::format("unexpected output at cycle {}: no vector owes an output then", d.cycle);
+  }
+  return fmt::format("{}: {}", d.kind, harness);
 }
 
 }  // namespace
@@ -725,6 +911,9 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   r.rtl_options = subject.rtl_options;
   r.config_name = subject.cfg.name();
   r.config_path = subject.cfg.origin();
+  r.command = subject.command;
+  r.config_option =
+      subject.config_option.value_or(" --config " + shell_quoted(subject.cfg.origin()));
   r.options = options;
   PipelineModel& model = subject.model;
   const Stimulus& stimulus = subject.stimulus;
@@ -761,7 +950,9 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
     ho.trace_path = options.trace_path;
     ho.trace_to = options.trace_window;
   }
-  const MainRun run = run_shards(subject, options, ho, shards_of(subject, options, first, count));
+  const std::vector<Shard> shards = shards_of(subject, options, first, count);
+  const std::uint64_t shards_first = shards.front().first;
+  MainRun run = run_shards(subject, options, ho, shards);
   const Phase& main = run.last;
   r.vectors = run.inputs;
   r.outputs = run.outputs;
@@ -783,19 +974,48 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
     r.mismatches = rejects_an_output(main.kind) ? 1 : 0;
     r.failure_kind = main.kind;
     const std::uint64_t fail_cycle = main.harness.cycles - 1;
-    r.failure = main.report + failure_context(r, options.only_index, main.failing_index,
-                                              subject.independent_vectors);
     r.failure_detail = main.detail;
-    if (!options.trace_path.empty()) {  // same run again, waveform only around the failure
+    CosimFailure& d = *r.failure_detail;
+    const std::vector<StageValue> stage_values =
+        describe_vector(subject, options.seed, run.shard.first, d);
+    // The same run again, traced around the failure: for the user's waveform, and to look for
+    // the stages in the design's signals.
+    const bool locate = !stage_values.empty() && subject.traceable;
+    if (!options.trace_path.empty() || locate) {
+      std::optional<TempDir> dir;
+      ho.trace_path = options.trace_path;
+      if (ho.trace_path.empty()) {
+        dir.emplace("out");
+        ho.trace_path = (dir->path() / "trace.fst").string();
+      }
       ho.trace_from = fail_cycle > options.trace_window ? fail_cycle - options.trace_window : 0;
       ho.trace_to = fail_cycle + 1;
       ho.stall_stream = run.shard.stream;
-      DutPtr dut = make_dut();
-      (void)run_phase(model, *dut, stimulus, subject.contract, options, ho, run.shard.first,
-                      run.shard.count);
+      Phase traced;
+      {
+        DutPtr dut = make_dut();  // its waveform is complete once it is gone
+        traced = run_phase(model, *dut, stimulus, subject.contract, options, ho, run.shard.first,
+                           run.shard.count);
+      }
+      if (locate) locate_stages(ho.trace_path, stage_values, traced.notes, ho.trace_from, d);
+      if (!options.trace_path.empty()) {
+        complete_notes(subject, options.seed, run.shard.first, traced.harness.inputs,
+                       traced.notes);
+        annotate_waveform(options.trace_path, traced.notes);
+      }
+    }
+    d.message = failure_message(d, main.harness.message);
+    r.failure = main.report + vector_text(d) +
+                failure_context(r, options.only_index, main.failing_index,
+                                subject.independent_vectors);
+    if (!options.trace_path.empty()) {
       r.failure += fmt::format("  waveform of cycles {}..{}: {}\n", ho.trace_from, ho.trace_to,
                                options.trace_path);
     }
+  } else if (!options.trace_path.empty()) {
+    Phase& traced = run.duts > 1 ? run.first : run.last;
+    complete_notes(subject, options.seed, shards_first, traced.harness.inputs, traced.notes);
+    annotate_waveform(options.trace_path, traced.notes);
   }
   if (!options.trace_path.empty()) r.trace_written = options.trace_path;
 
@@ -816,11 +1036,13 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
       r.passed = false;
       r.mismatches = rejects_an_output(m.kind) ? 1 : 0;
       r.failure_kind = m.kind;
-      r.failure =
-          m.report + "  (in the stall-free measurement run)\n" +
-          failure_context(as_run, std::nullopt, m.failing_index, subject.independent_vectors);
       r.failure_detail = m.detail;
       r.failure_detail->in_measurement_run = true;
+      (void)describe_vector(subject, options.seed, stimulus.directed_count(), *r.failure_detail);
+      r.failure_detail->message = failure_message(*r.failure_detail, m.harness.message);
+      r.failure =
+          m.report + vector_text(*r.failure_detail) + "  (in the stall-free measurement run)\n" +
+          failure_context(as_run, std::nullopt, m.failing_index, subject.independent_vectors);
     } else if (m.harness.outputs > 1) {
       r.measured = true;
       r.throughput =

@@ -15,6 +15,7 @@
 #include "model/config.h"
 #include "model/pipeline.h"
 #include "sim/cosim/contract.h"
+#include "sim/cosim/waveform.h"
 #include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stall.h"
 #include "sim/cosim/stimulus.h"
@@ -71,7 +72,18 @@ struct CosimFailure {
   std::uint64_t outputs_of_vector = 0;   // mismatch: how many outputs that vector has
   std::vector<FieldValue> inputs;        // mismatch: the vector's inputs
   std::vector<FieldComparison> outputs;  // mismatch, unexpected output: per output field
-  std::string message;                   // the harness's words (deadlock, protocol)
+  // mismatch: the model's stage values for the vector (docs/<pipeline>.md's names), when the
+  // subject has them, and whether it lies inside the input contract ("inside", or the clause it
+  // breaks; "" without a contract).
+  std::vector<FieldValue> stages;
+  // mismatch, Verilator: each stage looked for in the design's signals named after it, in a
+  // waveform of the failing run, while the vector was in flight (from its acceptance to the
+  // failing output); the first stage with signals that never held the model's value is where the
+  // design parts from the model ("" when none is found).
+  std::vector<StageSighting> sightings;
+  std::string first_differing_stage;
+  std::string contract;
+  std::string message;  // one line: what failed, where (also the harness's words)
   bool in_measurement_run = false;       // found by the stall-free measurement run
 };
 
@@ -81,6 +93,8 @@ struct CosimReport {
   std::string rtl_options;
   std::string config_name;
   std::string config_path;
+  std::string command;        // CosimSubject::command
+  std::string config_option;  // CosimSubject::config_option, or " --config <its file>"
   CosimOptions options;
   std::uint64_t directed = 0;  // directed vectors in the main run
   std::uint64_t random = 0;    // random vectors in the main run
@@ -139,6 +153,16 @@ struct CosimSubject {
   // The pipeline's input contract for this configuration; the report counts the main run's
   // vectors against it. None (default): nothing counted.
   InputContract contract;
+  // How reproduce commands begin and name the configuration: the program as it was run
+  // ("./build/phongsim"), and the configuration as the user named it (" --config my.toml"; ""
+  // for the pipeline's default). Defaults: "phongsim" and the configuration's file.
+  std::string command = "phongsim";
+  std::optional<std::string> config_option = std::nullopt;
+  // The model's stage values of one vector (PipelineInfo::stages), for the failure report; the
+  // model is reset and has seen the vectors before it since reset. None: no stage table.
+  std::function<std::vector<StageValue>(PipelineModel&, std::span<const std::int64_t>)> stages;
+  // Whether make_dut's DUTs write waveforms (Verilator's do, Icarus's do not).
+  bool traceable = true;
 };
 
 // Error (nothing is checked, so nothing may pass) when the options give no vector; and when

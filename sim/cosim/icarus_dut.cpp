@@ -17,7 +17,7 @@
 #include "base/error.h"
 #include "base/process.h"
 #include "base/temporaries.h"
-#include "sim/cosim/rtl_sources.h"
+#include "sim/cosim/portable.h"
 
 namespace fs = std::filesystem;
 
@@ -278,8 +278,8 @@ DutFactory icarus_duts(const RtlDesign& design, const PipelineModel& model, std:
                                 "-s",
                                 "phongsim_icarus_tb",
                                 (build->dir.path() / "tb.sv").string()};
-  // The same include folders as Verilator's (rtl_sources.h).
-  for (const fs::path& dir : rtl_include_dirs(design.files)) argv.push_back("-I" + dir.string());
+  // The same include folders and defines as Verilator's.
+  for (const std::string& f : rtl_source_flags(design)) argv.push_back(f);
   for (const auto& f : rtl_files(design.files)) argv.push_back(f.string());
   if (log != nullptr) fmt::print(log, "Compiling {} with Icarus Verilog\n", design.name);
   const ProcessResult r = run_process(argv);
@@ -291,9 +291,9 @@ DutFactory icarus_duts(const RtlDesign& design, const PipelineModel& model, std:
         errors += (errors.empty() ? "" : "\n") + line;
       }
     }
-    throw Error(r.exit_code == -1
-                    ? std::string("icarus: iverilog not found (Debian: iverilog)")
-                    : fmt::format("iverilog failed for {}:\n{}", design.name, errors));
+    throw Error(r.exit_code == -1 ? std::string("icarus: iverilog not found (Debian: iverilog)")
+                                  : fmt::format("iverilog failed for {}:\n{}{}", design.name,
+                                                errors, portable_hint(errors, "Icarus Verilog 11")));
   }
   const std::size_t n_in = model.inputs().size(), n_out = model.outputs().size();
   std::shared_ptr<const IcarusBuild> shared = build;

@@ -52,12 +52,6 @@ std::vector<std::string> verilator_flags(const RtlDesign& d) {
   return flags;
 }
 
-// -I<folder> for each folder an `include is searched in (rtl_sources.h).
-std::vector<std::string> include_flags(const RtlDesign& d) {
-  std::vector<std::string> flags;
-  for (const fs::path& dir : rtl_include_dirs(d.files)) flags.push_back("-I" + dir.string());
-  return flags;
-}
 
 // The first line a tool prints for --version, once per process.
 std::string tool_version(const std::string& program) {
@@ -228,8 +222,10 @@ Keyed key_of(const RtlDesign& d) {
     h.add(f.path.filename().string());
     h.add(f.hash);
   }
-  // How many folders the files are in, and which file is in which: the include folders' order.
-  const std::vector<fs::path> dirs = rtl_include_dirs(d.files);
+  // The defines, and the include folders' order: how many are given, which file is in which.
+  for (const std::string& def : d.defines) h.add("define " + def);
+  h.add(fmt::format("include folders given: {}", d.include_dirs.size()));
+  const std::vector<fs::path> dirs = rtl_include_dirs(d.include_dirs, d.files);
   for (const HashedFile& f : k.files) {
     h.add(std::to_string(std::find(dirs.begin(), dirs.end(), f.path.parent_path()) - dirs.begin()));
   }
@@ -254,6 +250,7 @@ Keyed key_of(const RtlDesign& d) {
   for (std::size_t i = 0; i < dirs.size(); ++i) {
     k.head += fmt::format("incdir {} {}\n", i, dirs[i].string());
   }
+  for (const std::string& def : d.defines) k.head += fmt::format("define {}\n", def);
   return k;
 }
 
@@ -306,7 +303,7 @@ struct Cached {
 // content it was built from; nothing when there is none.
 std::optional<Cached> find_cached(const RtlDesign& d, const Keyed& k) {
   const std::string prefix = fmt::format("{}-{}-", d.name, k.base.substr(0, 16));
-  const std::vector<fs::path> dirs = rtl_include_dirs(d.files);
+  const std::vector<fs::path> dirs = rtl_include_dirs(d.include_dirs, d.files);
   std::error_code ec;
   std::vector<fs::path> candidates;
   for (const auto& e : fs::directory_iterator(rtl_cache_dir(), ec)) {
@@ -402,15 +399,16 @@ std::set<std::string> info_files(const std::string& info) {
   return files;
 }
 
-// Says why a rebuild happens: the Verilator flags, when a cached build of the same top,
-// parameters and files has other $PHONGSIM_VERILATOR_FLAGS; else the files that differ from the
-// newest cached build of the same top and parameters.
+// Says why a build happens, from the cached builds of the same top and parameters: the files
+// it includes, when one was built from the same files and flags; else its defines or the
+// $PHONGSIM_VERILATOR_FLAGS, when one was built from the same files; else the files that differ
+// from the newest; else that it is the first.
 std::string changed_since_last_build(const RtlDesign& d, const Keyed& k) {
   std::error_code ec;
   fs::file_time_type newest{};
-  std::string previous;
+  std::string previous, same_files;
   const std::set<std::string> now = info_files(k.head);
-  const std::string extra = info_field(k.head, "verilator_extra");
+  const std::vector<fs::path> dirs = rtl_include_dirs(d.include_dirs, d.files);
   for (const auto& e : fs::directory_iterator(rtl_cache_dir(), ec)) {
     const fs::path info = e.path() / "info.txt";
     if (e.path().filename().string().rfind(d.name + "-", 0) != 0 || !fs::exists(info)) continue;
@@ -420,27 +418,56 @@ std::string changed_since_last_build(const RtlDesign& d, const Keyed& k) {
         info_field(text, "x_init") != info_field(k.head, "x_init") ||
         info_field(text, "coverage") != info_field(k.head, "coverage"))
       continue;
+    if (info_field(text, "base") == k.base) {
+      std::string changed;
+      for (const std::string& line : info_lines(text, "include")) {
+        const auto inc = parse_include(line);
+        const auto path = inc ? resolve_include(*inc, dirs) : std::nullopt;
+        if (!path || !fs::is_regular_file(*path, ec) || file_hash(*path) != inc->hash) {
+          changed += (changed.empty() ? "" : ", ") + (inc ? inc->rel.filename().string() : line);
+        }
+      }
+      return changed.empty() ? "a file it includes changed"
+                             : "a file it includes changed: " + changed;
+    }
     std::set<std::string> given;  // its own files, without the included ones
     for (const std::string& f : info_files(text)) {
       if (now.contains(f)) given.insert(f);
     }
-    if (given == now && info_field(text, "verilator_extra") != extra) {
-      return fmt::format("PHONGSIM_VERILATOR_FLAGS changed: now \"{}\"", extra);
-    }
+    if (given == now) same_files = text;
     if (const auto t = fs::last_write_time(info, ec); previous.empty() || t > newest) {
       newest = t;
       previous = text;
     }
   }
+  if (!same_files.empty()) {
+    const auto list = [](const std::string& text, std::string_view field) {
+      std::string l;
+      for (const std::string& v : info_lines(text, field)) l += (l.empty() ? "" : " ") + v;
+      return l;
+    };
+    if (list(same_files, "define") != list(k.head, "define")) {
+      return fmt::format("its defines changed: now \"{}\"", list(k.head, "define"));
+    }
+    if (info_field(same_files, "verilator_extra") != info_field(k.head, "verilator_extra")) {
+      return fmt::format("PHONGSIM_VERILATOR_FLAGS changed: now \"{}\"",
+                         info_field(k.head, "verilator_extra"));
+    }
+    return "phongsim's plugin code or the tools changed";
+  }
   if (previous.empty()) return "first build of these parameters";
   const std::set<std::string> before = info_files(previous);
+  std::set<std::string> before_names;
+  for (const std::string& f : before) before_names.insert(f.substr(f.find(' ') + 1));
   std::string list;
+  bool shared = false;
   for (const std::string& f : now) {
-    if (!before.contains(f)) list += (list.empty() ? "" : ", ") + f.substr(f.find(' ') + 1);
+    const std::string name = f.substr(f.find(' ') + 1);
+    shared = shared || before_names.contains(name);
+    if (!before.contains(f)) list += (list.empty() ? "" : ", ") + name;
   }
-  if (!list.empty()) return "changed since the last build: " + list;
-  if (info_field(previous, "base") == k.base) return "a file it includes changed";
-  return "phongsim's plugin code or the tools changed";
+  if (!shared) return "first build of these files";
+  return "changed since the last build: " + list;
 }
 
 // The port widths a Verilated class declares: VL_IN*/VL_OUT*(&name, msb, lsb).
@@ -495,7 +522,7 @@ Checked verilate_interface(const RtlDesign& d) {
   std::vector<std::string> argv{"verilator",    "--cc", "-Wno-fatal", "-Werror-MODDUP",
                                 "--top-module", d.top,  "-Mdir",      mdir.string()};
   for (const RtlParam& p : d.params) argv.push_back(fmt::format("-G{}={}", p.name, p.value));
-  for (const std::string& i : include_flags(d)) argv.push_back(i);
+  for (const std::string& f : rtl_source_flags(d)) argv.push_back(f);
   for (const fs::path& f : d.files) argv.push_back(fs::absolute(f).lexically_normal().string());
   const ProcessResult r = run_process(argv, {}, dir.path());
   if (r.exit_code != 0) throw Error(verilator_problem(d, r.out, r.exit_code));
@@ -585,7 +612,7 @@ Pending prepare(const RtlDesign& d, Keyed k, const PipelineModel& model) {
   const Checked c = verilate_interface(d);
   check_contract(d, model, c);
   p.widths = c.widths;
-  const std::vector<fs::path> dirs = rtl_include_dirs(d.files);
+  const std::vector<fs::path> dirs = rtl_include_dirs(d.include_dirs, d.files);
   for (const HashedFile& f : k.files) p.stamps[f.path] = f.stamp;
   for (const auto& [path, stamp] : c.read) {
     if (p.stamps.contains(path)) continue;
@@ -670,7 +697,7 @@ void build_missing(const std::vector<Pending>& pending) {
     for (const HashedFile& f : pending[i].keyed.files) files.push_back(f.path.string());
     for (const RtlParam& p : d.params) gflags.push_back(fmt::format("-G{}={}", p.name, p.value));
     std::vector<std::string> args = verilator_flags(d);
-    for (const std::string& inc : include_flags(d)) args.push_back(inc);
+    for (const std::string& f : rtl_source_flags(d)) args.push_back(f);
     // COVERAGE: the plugin compiles Verilator's coverage runtime in (the shared runtime has none).
     lists += fmt::format(
         "phongsim_add_rtl_plugin(plugin_{} TOP {} ADAPTER \"{}\" OUTPUT_DIR \"{}\" RUNTIME runtime "
@@ -809,13 +836,23 @@ std::string verilator_gflags(std::span<const RtlParam> params) {
   return flags;
 }
 
+std::vector<std::string> rtl_source_flags(const RtlDesign& d) {
+  std::vector<std::string> flags;
+  for (const fs::path& dir : rtl_include_dirs(d.include_dirs, d.files)) {
+    flags.push_back("-I" + dir.string());
+  }
+  for (const std::string& def : d.defines) flags.push_back("-D" + def);
+  return flags;
+}
+
 std::vector<fs::path> rtl_files(std::span<const fs::path> paths) {
   std::vector<fs::path> files;
   for (const fs::path& p : paths) {
     if (fs::is_directory(p)) {
       std::vector<fs::path> in_dir;
       for (const auto& e : fs::directory_iterator(p)) {
-        if (e.is_regular_file() && e.path().extension() == ".sv") in_dir.push_back(e.path());
+        const fs::path ext = e.path().extension();
+        if (e.is_regular_file() && (ext == ".sv" || ext == ".v")) in_dir.push_back(e.path());
       }
       std::sort(in_dir.begin(), in_dir.end());
       files.insert(files.end(), in_dir.begin(), in_dir.end());
@@ -829,8 +866,6 @@ std::vector<fs::path> rtl_files(std::span<const fs::path> paths) {
     }
   }
   if (files.empty()) throw Error("the RTL paths hold no .sv files");
-  std::stable_partition(files.begin(), files.end(),
-                        [](const fs::path& f) { return f.stem().string().ends_with("_pkg"); });
   // The same file given twice (also by two spellings of its path) is read once.
   std::vector<fs::path> unique;
   std::vector<fs::path> seen;
@@ -841,7 +876,46 @@ std::vector<fs::path> rtl_files(std::span<const fs::path> paths) {
     seen.push_back(canon);
     unique.push_back(f);
   }
-  return unique;
+  // Packages first, whatever their files are called: each package file after the package files
+  // whose packages it names (pkg:: or import pkg), then the rest in the order given.
+  static const std::regex declares(R"(^\s*package\s+(?:automatic\s+|static\s+)?(\w+)\s*;)");
+  std::vector<std::string> text(unique.size());
+  std::vector<std::vector<std::string>> packages(unique.size());
+  for (std::size_t i = 0; i < unique.size(); ++i) {
+    text[i] = read_file(unique[i]);
+    std::istringstream lines(text[i]);
+    std::smatch m;
+    for (std::string line; std::getline(lines, line);) {
+      if (std::regex_search(line, m, declares)) packages[i].push_back(m[1]);
+    }
+  }
+  const auto uses = [&](std::size_t i, std::size_t j) {  // file i names a package of file j
+    for (const std::string& pkg : packages[j]) {
+      const std::regex use("\\b" + pkg + "\\s*::");
+      if (i != j && std::regex_search(text[i], use)) return true;
+    }
+    return false;
+  };
+  std::vector<fs::path> ordered;
+  std::vector<bool> placed(unique.size(), false);
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (std::size_t i = 0; i < unique.size(); ++i) {
+      if (placed[i] || packages[i].empty()) continue;
+      bool ready = true;
+      for (std::size_t j = 0; j < unique.size() && ready; ++j) {
+        ready = placed[j] || packages[j].empty() || !uses(i, j);
+      }
+      if (ready) {
+        ordered.push_back(unique[i]);
+        placed[i] = progress = true;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < unique.size(); ++i) {  // the rest; a cycle: as given
+    if (!placed[i]) ordered.push_back(unique[i]);
+  }
+  return ordered;
 }
 
 fs::path rtl_cache_dir() {

@@ -47,7 +47,11 @@ struct RtlDesign {
   std::string name;                          // what it is, for messages and cache entries
   std::string top;                           // top module
   std::vector<std::filesystem::path> files;  // SystemVerilog sources, in compile order
-  std::vector<RtlParam> params;              // the top's parameters
+  // Include folders searched before the folders of `files` (+incdir+, -I), and macros defined for
+  // every file (NAME or NAME=VALUE: +define+, -D); sim/cosim/rtl_args.h.
+  std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::string> defines;
+  std::vector<RtlParam> params;  // the top's parameters
   std::vector<PortBinding> ports;
   XInit x_init = XInit::zero;
   // A coverage variant (Verilator --coverage-line, and --coverage-toggle with coverage_toggle;
@@ -60,9 +64,14 @@ struct RtlDesign {
 // "-GPFmt=65802 -GAFmt=266 ...": the parameters as Verilator takes them.
 [[nodiscard]] std::string verilator_gflags(std::span<const RtlParam> params);
 
-// The SystemVerilog files of PATHs, in compile order: a file as given, a folder's *.sv files
-// sorted by name; every *_pkg.sv first (packages must precede their users). Error for a path
-// that does not exist, a file that is not .sv/.v, or no files at all.
+// -I<folder> for every include folder (rtl_include_dirs: the given ones, then the files') and
+// -D<define> for every define: what Verilator, Icarus and Yosys all read the same way.
+[[nodiscard]] std::vector<std::string> rtl_source_flags(const RtlDesign& design);
+
+// The SystemVerilog files of PATHs, in compile order: a file as given, a folder's *.sv and *.v
+// files sorted by name; the files that declare a package first, each after the packages it
+// names (packages must precede their users), the rest in the order given. Error for a path that
+// does not exist, a file that is not .sv/.v, or no files at all.
 [[nodiscard]] std::vector<std::filesystem::path> rtl_files(
     std::span<const std::filesystem::path> paths);
 

@@ -39,12 +39,14 @@ HashedFile hash_file(const fs::path& path) {
   return f;
 }
 
-std::vector<fs::path> rtl_include_dirs(std::span<const fs::path> files) {
+std::vector<fs::path> rtl_include_dirs(std::span<const fs::path> given,
+                                       std::span<const fs::path> files) {
   std::vector<fs::path> dirs;
-  for (const fs::path& f : files) {
-    const fs::path d = fs::absolute(f).lexically_normal().parent_path();
+  const auto add = [&](const fs::path& d) {
     if (std::find(dirs.begin(), dirs.end(), d) == dirs.end()) dirs.push_back(d);
-  }
+  };
+  for (const fs::path& d : given) add(fs::absolute(d).lexically_normal());
+  for (const fs::path& f : files) add(fs::absolute(f).lexically_normal().parent_path());
   return dirs;
 }
 

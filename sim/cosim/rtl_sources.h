@@ -40,11 +40,12 @@ struct HashedFile {
 // it was hashed ("is being written").
 [[nodiscard]] HashedFile hash_file(const std::filesystem::path& path);
 
-// The folders an `include is searched in: the folders of `files` (absolute), in order, each
-// once. phongsim's checks and builds give Verilator (and Icarus) these as -I, and run it in an
-// empty folder, so that both find the same files wherever phongsim runs.
+// The folders an `include is searched in: the `given` include folders (+incdir+, -I), then the
+// folders of `files`; absolute, in order, each once. phongsim's checks and builds give Verilator,
+// Icarus and Yosys these as -I, and run Verilator in an empty folder, so that every tool finds
+// the same files wherever phongsim runs.
 [[nodiscard]] std::vector<std::filesystem::path> rtl_include_dirs(
-    std::span<const std::filesystem::path> files);
+    std::span<const std::filesystem::path> given, std::span<const std::filesystem::path> files);
 
 // What one Verilator run read (its `mdir`/<prefix>__verFiles.dat): every source's absolute path
 // (relative ones resolved against `cwd`, the folder it ran in) and the stamp Verilator saw,

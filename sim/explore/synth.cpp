@@ -28,7 +28,9 @@
 #include "base/process.h"
 #include "base/temporaries.h"
 #include "base/text.h"
+#include "sim/cosim/portable.h"
 #include "sim/cosim/rtl_plugin.h"
+#include "sim/cosim/rtl_sources.h"
 
 namespace phongsim {
 namespace fs = std::filesystem;
@@ -103,6 +105,13 @@ std::string chparams(std::span<const RtlParam> params) {
 std::string read_script(const RtlDesign& src, const std::string& chparam,
                         const std::string& extra) {
   std::string s = "read_verilog -sv";
+  // -I DIR and -D NAME=VALUE unquoted: Yosys keeps the quotes of a quoted option's value.
+  for (const std::string& flag : rtl_source_flags(src)) {
+    if (flag.find_first_of(" \t\n\"';") != std::string::npos) {
+      throw Error(fmt::format("synthesis cannot pass '{}' to yosys (a space, quote or ;)", flag));
+    }
+    s += " " + flag;
+  }
   for (const auto& f : src.files) s += fmt::format(" {}", quoted(f));
   if (!extra.empty()) s += fmt::format(" {}", extra);
   s += "; ";
@@ -151,8 +160,8 @@ void run_yosys(const std::string& script, const fs::path& log_path, const std::s
       (line.find("dlatch") != std::string::npos || line.find("DLATCH") != std::string::npos)) {
     throw Error(fmt::format("{}: the RTL of {} has latches (yosys: {})", label, top, line));
   }
-  throw Error(
-      fmt::format("{}: yosys synthesis of {} failed (exit {}): {}", label, top, r.exit_code, line));
+  throw Error(fmt::format("{}: yosys synthesis of {} failed (exit {}): {}{}", label, top,
+                          r.exit_code, line, portable_hint(line, "Yosys 0.23")));
 }
 
 nlohmann::json read_json(const fs::path& path) {
@@ -615,7 +624,10 @@ SynthResult synthesize(const RtlDesign& src, const std::string& label, const Syn
   h.add(gflags);
   h.add(fmt::format("generic={} ice40={}", options.generic, options.ice40));
   h.add(yosys_version);
-  h.add(read_script(RtlDesign{"", "TOP", {"SRC"}, {}, {}}, "CHPARAM", "EXTRA"));
+  RtlDesign shape;  // the script's words, without the design's
+  shape.top = "TOP";
+  shape.files = {"SRC"};
+  h.add(read_script(shape, "CHPARAM", "EXTRA"));
   if (options.generic) h.add(generic_script("TOP", "DIR"));
   if (options.ice40) {
     h.add(nextpnr_version);
@@ -628,6 +640,25 @@ SynthResult synthesize(const RtlDesign& src, const std::string& label, const Syn
     h.add(f.filename().string());
     h.add(read_file(f));
   }
+  // What an `include may read (Yosys does not say which): every header and source in the
+  // include folders, and the defines.
+  for (const fs::path& dir : rtl_include_dirs(src.include_dirs, src.files)) {
+    std::vector<fs::path> in_dir;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string ext = it->path().extension().string();
+      if (it->is_regular_file(ec) && (ext == ".svh" || ext == ".vh" || ext == ".sv" ||
+                                      ext == ".v" || ext == ".inc" || ext == ".h")) {
+        in_dir.push_back(it->path());
+      }
+    }
+    std::sort(in_dir.begin(), in_dir.end());
+    for (const fs::path& f : in_dir) {
+      h.add(f.filename().string());
+      h.add(read_file(f));
+    }
+  }
+  for (const std::string& def : src.defines) h.add("define " + def);
   const std::string key = h.hex();
   const fs::path cache_file = rtl_cache_dir() / "synth" / (key + ".json");
   if (auto cached = read_cached(cache_file, key)) return *cached;

@@ -66,4 +66,12 @@ RtlDesign rtl_design(const PipelineInfo& pipeline, const Config& cfg,
   return d;
 }
 
+RtlDesign rtl_design(const PipelineInfo& pipeline, const Config& cfg, const RtlSources& sources,
+                     std::string top) {
+  RtlDesign d = rtl_design(pipeline, cfg, sources.files, std::move(top));
+  d.include_dirs = sources.include_dirs;
+  d.defines = sources.defines;
+  return d;
+}
+
 }  // namespace phongsim

@@ -20,6 +20,7 @@
 #include "sim/cosim/coverpoints.h"
 #include "sim/cosim/frame_cycles.h"
 #include "sim/cosim/report.h"
+#include "sim/cosim/rtl_args.h"
 #include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stimulus.h"
 
@@ -68,12 +69,6 @@ struct Mutant {
   std::string_view breaks;  // what it breaks, one line
   // When set: text the failure report must contain (a mutant only an assertion can see).
   std::string_view report = {};
-};
-
-// One stage's value for one input, named as in the RTL and the pipeline's spec.
-struct StageValue {
-  std::string name;
-  fx::Fixed value;
 };
 
 struct PipelineInfo {
@@ -169,5 +164,9 @@ FrameCycles one_per_clock(const Config& cfg, std::span<const std::int64_t>,
 [[nodiscard]] RtlDesign rtl_design(const PipelineInfo& pipeline, const Config& cfg,
                                    std::vector<std::filesystem::path> files = {},
                                    std::string top = {});
+// The same from the user's sources as a file list names them (files, include folders, defines;
+// sim/cosim/rtl_args.h); no files: phongsim's rtl/.
+[[nodiscard]] RtlDesign rtl_design(const PipelineInfo& pipeline, const Config& cfg,
+                                   const RtlSources& sources, std::string top);
 
 }  // namespace phongsim
