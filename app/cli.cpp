@@ -107,6 +107,13 @@ void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
   if (!rtl_options) return;
   cmd.add_flag("--no-build", no_build,
                "fail instead of Verilating RTL whose current content is not built yet");
+  add_source_options(cmd);
+  cmd.add_option("--rtl-plugin", plugin,
+                 "a plugin file phongsim built before (phongsim build-rtl prints its path); "
+                 "refused if any source it was built from has changed since");
+}
+
+void Target::add_source_options(CLI::App& cmd) {
   command = &cmd;
   cmd.add_option("--rtl", rtl,
                  "your RTL instead of phongsim's, implementing the pipeline's port contract "
@@ -123,9 +130,6 @@ void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
   cmd.add_option("-D", defines, "a macro of your RTL: NAME or NAME=VALUE");
   cmd.add_option("--top", top,
                  "top module of --rtl or --rtl-plugin (default: the built-in top's name)");
-  cmd.add_option("--rtl-plugin", plugin,
-                 "a plugin file phongsim built before (phongsim build-rtl prints its path); "
-                 "refused if any source it was built from has changed since");
 }
 
 void Target::add_simulator_option(CLI::App& cmd) {
@@ -239,6 +243,16 @@ RtlSources Target::sources() const {
   return s;
 }
 
+RtlSources Target::checked_sources() const {
+  RtlSources s = sources();
+  if (s.files.empty() && (!s.include_dirs.empty() || !s.defines.empty())) {
+    throw Error(
+        "-I, -D, +incdir+ and +define+ go with your RTL (--rtl or -f): phongsim's own RTL takes "
+        "neither");
+  }
+  return s;
+}
+
 std::string Target::rtl_options() const {
   std::string s;
   if (command == nullptr || !user_rtl()) return s;
@@ -271,13 +285,7 @@ RtlDesign design_of(const Loaded& l, const Target& t) {
       (t.user_rtl() || !t.include_dirs.empty() || !t.defines.empty())) {
     throw Error("give --rtl (or -f, -I, -D) or --rtl-plugin, not both: a plugin records its RTL");
   }
-  const RtlSources sources = t.sources();
-  if (sources.files.empty() && (!sources.include_dirs.empty() || !sources.defines.empty())) {
-    throw Error(
-        "-I, -D, +incdir+ and +define+ go with your RTL (--rtl or -f): phongsim's own RTL takes "
-        "neither");
-  }
-  return rtl_design(*l.pipeline, l.cfg, sources, t.top);
+  return rtl_design(*l.pipeline, l.cfg, t.checked_sources(), t.top);
 }
 
 Rtl rtl_of(const Loaded& l, const Target& t) {

@@ -81,10 +81,14 @@ struct Target {
   // `rtl_options`: also --rtl, -f, -F, -I, -D, --top, --rtl-plugin and --no-build.
   // `many_configs`: --config may be given several times (into `configs`).
   void add_options(CLI::App& cmd, bool rtl_options = true, bool many_configs = false);
+  // Only the options that name the user's sources: --rtl, -f, -F, -I, -D and --top.
+  void add_source_options(CLI::App& cmd);
   // Whether the user gave RTL of their own (--rtl or a file list).
   [[nodiscard]] bool user_rtl() const { return !rtl.empty() || !lists_cwd.empty() || !lists_here.empty(); }
   // The user's RTL as one set, in the order the options were given (files, lists read).
   [[nodiscard]] RtlSources sources() const;
+  // The same; Error for include folders or defines without sources to go with them.
+  [[nodiscard]] RtlSources checked_sources() const;
   // The options that name the user's RTL again, shell-quoted, in the order given
   // (" --rtl a.sv +incdir+inc -f files.f -D X=1"); "" for phongsim's RTL.
   [[nodiscard]] std::string rtl_options() const;

@@ -16,14 +16,18 @@ struct EvalCli {
   std::string in;
   std::string out;
   std::string json;
+  std::string stages;
   bool real = false;
 };
 
 int run_eval(const EvalCli& c) {
   std::vector<std::pair<std::string, std::filesystem::path>> inputs = c.target.inputs();
   inputs.emplace_back("--in", c.in);
-  check_outputs({{"--out", c.out}, {"--json", c.json}}, inputs);
+  check_outputs({{"--out", c.out}, {"--json", c.json}, {"--stages", c.stages}}, inputs);
   const Loaded l = load(c.target);
+  if (!c.stages.empty() && l.pipeline->stages == nullptr) {
+    throw Error(fmt::format("--stages: {} has no stage table", l.pipeline->name));
+  }
   DutFactory make_dut;
   if (c.backend == "rtl") {
     make_dut = rtl_of(l, c.target).make_dut;
@@ -35,12 +39,16 @@ int run_eval(const EvalCli& c) {
   }
   JsonOutput json(c.json);
   OutputFile out(c.out);
+  std::optional<OutputFile> stages;
+  if (!c.stages.empty()) stages.emplace(c.stages);
   const InputContract contract = l.pipeline->contract(*l.model, l.cfg);
-  const EvalResult r = eval_csv(*l.model, make_dut, c.in, out.get(), c.real, contract);
+  const EvalResult r = eval_csv(*l.model, make_dut, c.in, out.get(), c.real, contract,
+                                l.pipeline->stages, stages ? stages->get() : nullptr);
   out.commit();
+  if (stages) stages->commit();
   const std::string x_init =
       c.target.x_init == "random" ? fmt::format(", x-init random, seed {}", c.target.x_seed) : "";
-  fmt::print(out.is_stdout() || json.to_stdout() ? stderr : stdout,
+  fmt::print(out.is_stdout() || json.to_stdout() || (stages && stages->is_stdout()) ? stderr : stdout,
              "{} output rows from {} ({} backend{}, {}) -> {}; {} vectors: {}\n", r.rows, c.in,
              c.backend, x_init, l.cfg.origin(), c.out, r.vectors, contract.summary(r.contract));
   if (json.wanted()) {
@@ -115,6 +123,10 @@ void add_eval(CLI::App& app, Action& action) {
                   "output CSV: header of output field names (- is standard output)")
       ->required();
   cmd->add_flag("--real", c->real, "values are reals instead of raw integers");
+  cmd->add_option("--stages", c->stages,
+                  "also write the model's stage values of every vector (the names of the "
+                  "pipeline's spec table) as CSV: vector,stage,format,raw,real (- is standard "
+                  "output)");
   cmd->add_option("--json", c->json,
                   "write the counts as JSON (docs/json.md: vectors, outputs, inside and outside "
                   "the input contract); - is standard output");

@@ -168,6 +168,9 @@ int main(int argc, char** argv) {
   }
   try {
     return action();
+  } catch (const phongsim::DesignFailure& e) {
+    fmt::print(stderr, "phongsim: FAIL: {}\n", e.what());
+    return 1;
   } catch (const std::bad_alloc&) {
     fmt::print(stderr,
                "phongsim: error: out of memory (the request needs more memory than this "

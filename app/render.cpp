@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 
 struct RenderCli {
   RenderOptions options;
+  Target rtl;  // the user's RTL (--rtl, -f, -F, -I, -D, --top) and its --pipeline
   std::string backend = "auto";
   std::string terms = "all";
   std::string texture_filter = "bilinear";
@@ -157,6 +158,20 @@ int run(RenderCli c) {
   }
   check_distinct(
       {{"--json", c.json}, {"--unit-config", c.options.unit_config}, {"--scene", c.options.scene}});
+  if (c.rtl.user_rtl()) {
+    if (c.rtl.pipeline.empty()) {
+      throw Error("--rtl: say which pipeline your RTL implements with --pipeline (phongsim list)");
+    }
+    (void)find_pipeline(c.rtl.pipeline);  // Error naming an unknown one
+    c.options.rtl_pipeline = c.rtl.pipeline;
+    c.options.rtl = c.rtl.checked_sources();
+    c.options.rtl_top = c.rtl.top;
+  } else {
+    (void)c.rtl.checked_sources();  // -I or -D alone
+    if (!c.rtl.pipeline.empty() || !c.rtl.top.empty()) {
+      throw Error("--pipeline and --top name your RTL's pipeline and top: give the RTL (--rtl or -f)");
+    }
+  }
   (void)parse_clock(c.clock);
   // The files appear together when the render is done, or not at all; a --json inside the
   // output directory is one of them. Both are checked before anything is rendered.
@@ -290,6 +305,10 @@ void add_render(CLI::App& app, Action& action) {
                   "cached), where it fits");
   cmd->add_flag("--no-build", c->options.no_build,
                 "fail instead of Verilating a configuration that is not built yet");
+  c->rtl.add_source_options(*cmd);
+  cmd->add_option("--pipeline", c->rtl.pipeline,
+                  "the pipeline your --rtl implements: it runs every unit of that pipeline "
+                  "through the RTL backend (docs/your-rtl.md, \"Rendering your RTL\")");
   cmd->add_flag("--quiet", c->quiet, "no progress display");
   auto list_methods = std::make_shared<bool>(false);
   cmd->add_flag("--list-methods", *list_methods, "list the methods and exit");

@@ -14,4 +14,12 @@ class Error : public std::runtime_error {
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+// Thrown when the design under test disagrees with the model outside a co-simulation (a frame
+// rendered through RTL): a verdict, not bad input. The CLI prints `phongsim: FAIL: <what()>` and
+// exits with status 1, as a failing co-simulation does.
+class DesignFailure : public Error {
+ public:
+  explicit DesignFailure(const std::string& message) : Error(message) {}
+};
+
 }  // namespace phongsim

@@ -158,6 +158,22 @@ EOT
     [ "$(head -1 "$tmp/model.csv")" = "p_x,p_y,p_z" ] || fail "bad header: $(head -1 "$tmp/model.csv")"
     [ "$(wc -l <"$tmp/model.csv")" -eq 3001 ] || fail "expected 3000 rows"
     cmp "$tmp/model.csv" "$tmp/rtl.csv" || fail "model and rtl outputs differ"
+    # --stages: every vector's stage values; the last stage of each component is its output.
+    "$phongsim" eval --config "$default" --backend rtl --in "$tmp/vectors.csv" --out "$tmp/rtl2.csv" \
+      --stages "$tmp/stages.csv" || fail "eval --stages failed"
+    cmp "$tmp/model.csv" "$tmp/rtl2.csv" || fail "--stages changed the outputs"
+    python3 - "$tmp/stages.csv" "$tmp/model.csv" <<'EOT' || fail "stages CSV: $(head "$tmp/stages.csv")"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+out = list(csv.DictReader(open(sys.argv[2])))
+assert len(rows) == 12 * len(out), (len(rows), len(out))
+for r in rows:
+    if r["stage"] in ("p_x", "p_y", "p_z"):
+        assert r["raw"] == out[int(r["vector"])][r["stage"]], r
+assert [r["stage"] for r in rows[:4]] == ["delta_x", "prod_x", "sum_x", "p_x"], rows[:4]
+EOT
+    expect_error "--out and --stages name the same file -" \
+      "$phongsim" eval --config "$default" --in "$tmp/vectors.csv" --out - --stages -
     # Reals: exactly representable values give the same raw results.
     printf 'p0_x,p0_y,p0_z,p1_x,p1_y,p1_z,a\n0.5,-1,1,0.25,1.5,-2,0.5\n' >"$tmp/real.csv"
     "$phongsim" eval --config "$default" --in "$tmp/real.csv" --out "$tmp/real_out.csv" --real \
@@ -387,6 +403,49 @@ EOT
     expect_error "no such include folder" run --rtl "$t/src" +incdir+"$tmp/nope"
     expect_error "'1X' is not a macro name" run -F "$t/lists/files.f" -D 1X
     expect_error "-I, -D, \+incdir\+ and \+define\+ go with your RTL" "$phongsim" cosim lirp -D X=1
+    ;;
+
+  your-lyon)
+    # examples/your-rtl/lyon (docs/your-rtl.md): a Lyon unit as a real RTL tree (file list,
+    # include folder, defines, a package not named *_pkg.sv) passes cosim under stalls, lint,
+    # synth against phongsim's, Icarus and render; its define-selected bug (g2 without y^2)
+    # fails with the first differing stage named, and renders nothing.
+    list="$src/examples/your-rtl/lyon/lists/files.f"
+    "$phongsim" cosim lyon -F "$list" --top my_lyon --vectors 20000 --backpressure random:0.5 \
+      --source-idle random:0.3 >"$tmp/a" 2>&1 || fail "cosim: $(cat "$tmp/a")"
+    grep -q "^PASS lyon/default: .*RTL: my_lyon from --rtl, 3 files, MY_LYON_EXACT_W=64" "$tmp/a" ||
+      fail "cosim: $(cat "$tmp/a")"
+    "$phongsim" cosim lyon -F "$list" --top my_lyon -D MY_LYON_BUG_G2 --json "$tmp/bug.json" \
+      >"$tmp/b" 2>&1
+    [ $? -eq 1 ] || fail "the g2 bug did not fail: $(cat "$tmp/b")"
+    python3 - "$tmp/bug.json" <<'EOT' || fail "bug report: $(cat "$tmp/b")"
+import json, sys
+f = json.load(open(sys.argv[1]))["runs"][0]["failure"]
+assert f["first_differing_stage"] == "n.g", f["first_differing_stage"]
+assert f["message"].startswith("mismatch at cycle") and "first stage to differ: n.g" in f["message"], f["message"]
+g = next(s for s in f["stages"] if s["field"] == "n.g")
+assert g["signals"] and not any(x["held"] for x in g["signals"]), g
+assert all(x["held"] for s in f["stages"] if s["field"] in ("n.z", "n.y") for x in s["signals"]), f["stages"]
+EOT
+    "$phongsim" lint lyon -F "$list" --top my_lyon >"$tmp/c" 2>&1 || fail "lint: $(cat "$tmp/c")"
+    "$phongsim" synth lyon -F "$list" --top my_lyon >"$tmp/d" 2>&1 || fail "synth: $(cat "$tmp/d")"
+    grep -q "^against phongsim's lyon_top: [0-9]* vs [0-9]* cells" "$tmp/d" || fail "synth: $(cat "$tmp/d")"
+    "$phongsim" cosim lyon -F "$list" --top my_lyon --simulator icarus --vectors 300 \
+      --backpressure random:0.5 >"$tmp/e" 2>&1 || fail "icarus: $(cat "$tmp/e")"
+    # Rendering: the lyon-k2 unit through the user's RTL, output by output against the model.
+    "$phongsim" render --method lyon-k2 --backend rtl -F "$list" --top my_lyon --pipeline lyon \
+      --size 16 --out "$tmp/r" --quiet >"$tmp/f" 2>&1 || fail "render: $(cat "$tmp/f")"
+    [ -s "$tmp/r/shinyballs_lyon-k2.png" ] || fail "render wrote no image: $(ls "$tmp/r")"
+    "$phongsim" render --method lyon-k2 --backend rtl -F "$list" --top my_lyon --pipeline lyon \
+      -D MY_LYON_BUG_G2 --size 24 --out "$tmp/r2" --quiet >"$tmp/g" 2>&1
+    [ $? -eq 1 ] || fail "render of the bug: $(cat "$tmp/g")"
+    grep -q "FAIL: lyon-k2 \[rtl\]: your RTL (my_lyon) with .* differs from its model at output" "$tmp/g" ||
+      fail "render of the bug: $(cat "$tmp/g")"
+    [ ! -e "$tmp/r2" ] || fail "a failing render left files: $(ls "$tmp/r2")"
+    expect_error "--rtl: say which pipeline your RTL implements with --pipeline" \
+      "$phongsim" render --method lyon-k2 --backend rtl -F "$list" --out "$tmp/r3"
+    expect_error "--rtl: no method chosen here runs on a lyon unit through the RTL backend" \
+      "$phongsim" render --method phong -F "$list" --pipeline lyon --out "$tmp/r3"
     ;;
 
   stage-report)

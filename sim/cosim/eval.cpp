@@ -134,7 +134,7 @@ class VectorReader {
 
 EvalResult eval_csv(PipelineModel& model, const DutFactory& make_dut,
                     const std::filesystem::path& in, std::FILE* out, bool real,
-                    InputContract contract) {
+                    InputContract contract, StagesFn stages, std::FILE* stages_out) {
   const auto& ins = model.inputs();
   const auto& outs = model.outputs();
   VectorReader reader(in, ins, real);
@@ -144,8 +144,24 @@ EvalResult eval_csv(PipelineModel& model, const DutFactory& make_dut,
   fmt::print(out, "{}\n", header);
   EvalResult result;
   std::size_t& rows = result.rows;
+  // The stages come from a model of their own, which has seen the vectors before each one.
+  std::unique_ptr<PipelineModel> stage_model;
+  std::vector<std::int64_t> scratch;
+  if (stages != nullptr && stages_out != nullptr) {
+    stage_model = model.clone();
+    stage_model->reset();
+    fmt::print(stages_out, "vector,stage,format,raw,real\n");
+  }
   const auto next = [&](std::span<std::int64_t> v) {
     if (!reader.next(v)) return false;
+    if (stage_model) {
+      for (const StageValue& s : stages(*stage_model, v)) {
+        fmt::print(stages_out, "{},{},{},{},{}\n", result.vectors, s.name, s.value.fmt.str(),
+                   s.value.raw, fx::to_real(s.value.raw, s.value.fmt));
+      }
+      scratch.clear();
+      (void)stage_model->eval(v, scratch);
+    }
     ++result.vectors;
     contract.count(v, v.size(), result.contract);
     return true;

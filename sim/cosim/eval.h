@@ -32,8 +32,13 @@ struct EvalResult {
 // against `contract` in file order (the pipeline's, sim/cosim/contract.h; a default one counts
 // nothing). Throws Error naming file, line and column for malformed input (what was written to
 // `out` by then is the caller's to discard: base/output_file.h does).
+// With `stages` and `stages_out`, also writes the model's stage values of every vector to
+// `stages_out` as CSV, one row per vector and stage (a pipeline's stages can vary from vector to
+// vector): vector,stage,format,raw,real.
+using StagesFn = std::vector<StageValue> (*)(PipelineModel&, std::span<const std::int64_t>);
 EvalResult eval_csv(PipelineModel& model, const DutFactory& make_dut,
                     const std::filesystem::path& in, std::FILE* out, bool real,
-                    InputContract contract = {});
+                    InputContract contract = {}, StagesFn stages = nullptr,
+                    std::FILE* stages_out = nullptr);
 
 }  // namespace phongsim

@@ -520,12 +520,28 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
     const bool replace = !override_pipeline.empty() && runs_on(m, override_pipeline);
     return (replace ? fs::path(o.unit_config) : built_in).string();
   };
+  // Units of the user's RTL: those whose configuration is of its pipeline, through RTL.
+  const auto runs_user_rtl = [&](std::size_t i) {
+    return !o.rtl_pipeline.empty() && backends[i] == Backend::rtl &&
+           Config::load(unit_path(*chosen[i])).pipeline() == o.rtl_pipeline;
+  };
+  if (!o.rtl_pipeline.empty()) {
+    bool used = false;
+    for (std::size_t i = 0; i < chosen.size(); ++i) used = used || runs_user_rtl(i);
+    if (!used) {
+      throw Error(fmt::format(
+          "--rtl: no method chosen here runs on a {} unit through the RTL backend (--method "
+          "names one, --backend rtl; `phongsim render --list-methods`)",
+          o.rtl_pipeline));
+    }
+  }
   std::map<std::pair<std::string, Backend>, std::unique_ptr<Unit>> units;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     if (backends[i] == Backend::float_ref) continue;
     auto key = std::make_pair(unit_path(*chosen[i]), backends[i]);
     if (!units.contains(key)) {
-      units[key] = std::make_unique<Unit>(key.first, backends[i], o.no_build);
+      units[key] = std::make_unique<Unit>(key.first, backends[i], o.no_build,
+                                          runs_user_rtl(i) ? &o.rtl : nullptr, o.rtl_top);
     }
   }
   Frame f = analytic ? shinyballs(o.size == 0 ? 64 : o.size)

@@ -15,6 +15,7 @@
 #include "base/output_file.h"
 #include "ref/texture_maps.h"
 #include "sim/cosim/frame_cycles.h"
+#include "sim/cosim/rtl_args.h"
 #include "sim/render/image.h"
 
 namespace phongsim {
@@ -61,6 +62,14 @@ struct RenderOptions {
   // (width exploration renders scenes through candidate configurations); Error when no chosen
   // method runs on a unit of that pipeline.
   std::string unit_config;
+  // The user's RTL (docs/your-rtl.md, "Rendering your RTL") of the pipeline `rtl_pipeline`, top
+  // `rtl_top` (empty: the built-in top's name): every unit whose configuration is of that
+  // pipeline and that runs on the RTL backend runs it, with the configuration's parameters; its
+  // outputs must equal the model's, output by output (Error otherwise), and its frame clocks
+  // are its own. Error when no chosen method runs such a unit through RTL.
+  std::string rtl_pipeline;
+  RtlSources rtl;
+  std::string rtl_top;
   Terms terms = Terms::all;
   // The texture methods' textures (docs/methods.md): texels per side (0: the exact texture
   // function, no sampling) and filtering.

@@ -21,12 +21,19 @@
 
 namespace phongsim::shading {
 
-Unit::Unit(const std::filesystem::path& config, Backend backend, bool no_build)
+Unit::Unit(const std::filesystem::path& config, Backend backend, bool no_build,
+           const RtlSources* rtl, const std::string& top)
     : cfg_(Config::load(config)),
       model_(make_model(find_pipeline(cfg_.pipeline()), cfg_)),
-      backend_(backend) {
+      backend_(backend),
+      rtl_name_("the RTL of " + cfg_.origin()),
+      user_rtl_(rtl != nullptr) {
   if (backend == Backend::rtl) {
-    const RtlPlugin plugin = locate_rtl(rtl_design(find_pipeline(cfg_.pipeline()), cfg_), *model_,
+    const PipelineInfo& pipeline = find_pipeline(cfg_.pipeline());
+    const RtlDesign design =
+        rtl != nullptr ? rtl_design(pipeline, cfg_, *rtl, top) : rtl_design(pipeline, cfg_);
+    if (rtl != nullptr) rtl_name_ = fmt::format("your RTL ({}) with {}", design.top, cfg_.origin());
+    const RtlPlugin plugin = locate_rtl(design, *model_,
                                         no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
     library_ = RtlLibrary::open(plugin);
   }
@@ -59,11 +66,16 @@ std::vector<std::int64_t> Unit::run(const std::vector<std::int64_t>& vectors,
         if (++outputs % 4096 == 0) progress(what, outputs, 0);
       });
   if (r.reason != StopReason::finished || r.inputs != count) {
-    throw Error(fmt::format("{}: the RTL of {} stopped: {}", what, cfg_.origin(),
-                            r.message.empty() ? "not every input was accepted" : r.message));
+    const std::string problem = fmt::format(
+        "{}: {} stopped: {}", what, rtl_name_,
+        r.message.empty() ? "not every input was accepted" : r.message);
+    if (user_rtl_) throw DesignFailure(problem);
+    throw Error(problem);
   }
   const std::uint64_t measured = r.outputs == 0 ? 0 : r.last_output_cycle + 1;
-  if (measured != frame_.cycles || r.outputs != frame_.outputs) {
+  if (user_rtl_ && r.outputs == frame_.outputs) {
+    frame_.cycles = measured;  // the user's design keeps its own clocks
+  } else if (measured != frame_.cycles || r.outputs != frame_.outputs) {
     throw Error(fmt::format(
         "{}: the RTL of {} took {} cycles for {} outputs, the cycle model says {} for {} (a "
         "phongsim bug: please report it)",
@@ -72,8 +84,9 @@ std::vector<std::int64_t> Unit::run(const std::vector<std::int64_t>& vectors,
   if (rtl != out) {  // the frame is a co-simulation too
     std::size_t i = 0;
     while (i < rtl.size() && i < out.size() && rtl[i] == out[i]) ++i;
-    throw Error(fmt::format("{}: the RTL of {} differs from its model at output {} of {}", what,
-                            cfg_.origin(), i / n_out, out.size() / n_out));
+    throw DesignFailure(fmt::format("{}: {} differs from its model at output {} of {} (phongsim cosim "
+                            "gives the first mismatch with its stages)",
+                            what, rtl_name_, i / n_out, out.size() / n_out));
   }
   return rtl;
 }

@@ -25,10 +25,12 @@ namespace phongsim::shading {
 // the float Fig. 8 methods shade the same way.
 [[nodiscard]] inline double root_shininess(double n) { return std::round(std::sqrt(n)); }
 
-// One configuration's model or Verilated RTL (located, built on demand unless `no_build`).
+// One configuration's model or Verilated RTL (located, built on demand unless `no_build`):
+// phongsim's, or the user's `rtl` with top `top` when given (RenderOptions::rtl).
 class Unit {
  public:
-  Unit(const std::filesystem::path& config, Backend backend, bool no_build);
+  Unit(const std::filesystem::path& config, Backend backend, bool no_build,
+       const RtlSources* rtl = nullptr, const std::string& top = {});
 
   [[nodiscard]] const Config& config() const { return cfg_; }
   [[nodiscard]] const PipelineModel& model() const { return *model_; }
@@ -46,6 +48,8 @@ class Unit {
   std::unique_ptr<PipelineModel> model_;
   Backend backend_;
   std::shared_ptr<RtlLibrary> library_;
+  std::string rtl_name_;  // "the RTL of <config>", or "your RTL (top T) with <config>"
+  bool user_rtl_ = false;
   FrameCycles frame_;
   std::vector<FrameCycles> own_;
 };

@@ -10,8 +10,9 @@
 //
 // Structure supported: Arrangement 7 (x from n D.D), Halfway 0 (reflect), Norm 0/1/2, K 0..3,
 // every Round, any widths of the formats phongsim passes (signedness as in configs/lyon: vectors,
-// N', y, N, dot, R, D signed; a, n, z, g, dd, xf, sq, spec, diff unsigned). Anything else stops
-// elaboration with an $error.
+// N', y, N, dot, R, D signed; a, n, z, g, dd, xf, sq, spec, diff unsigned): configs/lyon's
+// default, fig7_k0/k1/k3, fig7_g1, fig7_nonorm and narrow. Anything else is refused (an $error at
+// elaboration, a $fatal at time 0 in simulation: see the end of the module).
 //
 // Pipeline: one register stage per row of docs/lyon.md's stage table (stage s holds the values
 // named there; vld_q[s] says it holds a pixel), 13 + K stages, latency 13 + K cycles, one pixel
@@ -21,13 +22,21 @@
 // depends combinationally on out_ready_i.
 //
 // Registers are named after the spec's signals: delta_q, prod_q, np_q, z_q, y_q, g_q, n_q,
-// dot_q, diff_q, r_q, d_q, dd_q, xf_q, zero_q, sq_q[j] (= sq_j), spec_q; side data (n0_q, a_q,
+// dot_q, diff_q, r_q, d_q, dd_q, xf_q, zero_q, sq_0_q .. sq_3_q, spec_q; side data (n0_q, a_q,
 // v_q, l_q, shin_q) is indexed by stage: v_q[s] is V of the pixel in stage s. *_d is what a
-// stage register loads, *_x an exact (unrounded) intermediate.
+// stage register loads, *_full an exact (unrounded) intermediate (never *_x: phongsim's failure
+// report reads a signal np_x as the model's x component of N'); xk is x/2^k exact, the model's
+// stage of that name.
 //
 // Defines: MY_LYON_BUG_G2 - a deliberate bug for the failing example: g2 drops its y^2 term
-// (g = 1 + y/2, i.e. g1), so N, and everything after it, differ from the model.
+// (g = 1 + y/2, i.e. g1), so g, N and everything after them differ from the model.
+// MY_LYON_EXACT_W (inc/my_lyon_defs.svh) - width of the requantizer's exact word.
 `include "my_lyon_defs.svh"
+
+// sq_j = rq(sq_(j-1)^2, sq): the square is exact in SqXW bits (unsigned, frac 2 SqF).
+`define MY_LYON_SQUARE(V) \
+  `MY_LYON_RQ(SqW, $signed({1'b0, SqXW'(V) * SqXW'(V)}), 2 * SqF, SqFmt)
+
 module my_lyon #(
   // Structure ([param]) and rounding ([mode] round).
   parameter bit [31:0] Arrangement = my_lyon_types::ArrangementNDD,
@@ -119,7 +128,8 @@ module my_lyon #(
   localparam int SqXW   = 2 * SqW;                 // sq_(j-1)^2 (unsigned)       frac 2 SqF
 
   // ---------------------------------------------------------------------------------------------
-  // Pipeline control. Stage numbers as in docs/lyon.md's table (its stages 0-1 are SDelta, SProd).
+  // Pipeline control. Stages in docs/lyon.md's table order, numbered from 1 here: the table's
+  // stages 0-1 are SDelta and SProd, and from N' on each number here is the table's plus one.
   localparam int SDelta = 1;   // delta = N1 - N0
   localparam int SProd  = 2;   // prod = a delta
   localparam int SNp    = 3;   // N'
@@ -197,13 +207,13 @@ module my_lyon #(
   logic [3*NpW-1:0]    np_q [SNp:SN-1];  // N' in stages SNp .. SN-1 (used again for N = g N')
 
   for (genvar c = 0; c < 3; c++) begin : g_lirp
-    logic signed [NpXW-1:0] np_x;
+    logic signed [NpXW-1:0] np_full;
     assign delta_d[c*DeltaW+:DeltaW] = DeltaW'($signed(in_n1_i[c*VW+:VW]))
                                      - DeltaW'($signed(in_n0_i[c*VW+:VW]));
     assign prod_d[c*ProdW+:ProdW] = $signed({1'b0, a_q}) * $signed(delta_q[c*DeltaW+:DeltaW]);
-    assign np_x = (NpXW'($signed(n0_q[SProd][c*VW+:VW])) <<< AF)
+    assign np_full = (NpXW'($signed(n0_q[SProd][c*VW+:VW])) <<< AF)
                 + NpXW'($signed(prod_q[c*ProdW+:ProdW]));
-    assign np_d[c*NpW+:NpW] = `MY_LYON_RQ(NpW, np_x, AF + VF, NpFmt);
+    assign np_d[c*NpW+:NpW] = `MY_LYON_RQ(NpW, np_full, AF + VF, NpFmt);
   end
 
   `MY_LYON_FF(en[SDelta], delta_q, delta_d)
@@ -220,13 +230,13 @@ module my_lyon #(
   logic [3*NW-1:0] n_q [SN:SDot];  // N in stages SN (for dot, diff) and SDot (for R)
 
   if (Norm != my_lyon_types::NormNone) begin : g_norm
-    wire  [ZXW-1:0] z_x;
+    wire  [ZXW-1:0] z_full;
     wire  [ZW-1:0]  z_d;
     logic [ZW-1:0]  z_q;
-    logic signed [YXW-1:0]  y_x;
+    logic signed [YXW-1:0]  y_full;
     wire  [YW-1:0]  y_d;
     logic [YW-1:0]  y_q;  // kept for the waveform, next to g
-    logic signed [GXW-1:0]  g_x;
+    logic signed [GXW-1:0]  g_full;
     wire  [GW-1:0]  g_d;
     logic [GW-1:0]  g_q;
     localparam int GFr = Norm == my_lyon_types::NormG1 ? YF + 1 : 2 * YF + 1;
@@ -235,33 +245,33 @@ module my_lyon #(
     // connects a memory word to a port and re-derives it under a $paramod name.
     wire [3*NpW-1:0] np_at_z;
     assign np_at_z = np_q[SNp];
-    my_lyon_dot3 #(.AW(NpW), .BW(NpW)) u_z (.a_i(np_at_z), .b_i(np_at_z), .sum_o(z_x));
-    assign z_d  = `MY_LYON_RQ(ZW, $signed(z_x), 2 * NpF, ZFmt);
+    my_lyon_dot3 #(.AW(NpW), .BW(NpW)) u_z (.a_i(np_at_z), .b_i(np_at_z), .sum_o(z_full));
+    assign z_d  = `MY_LYON_RQ(ZW, $signed(z_full), 2 * NpF, ZFmt);
 
-    assign y_x  = (YXW'(1) <<< ZF) - $signed({2'b00, z_q});
-    assign y_d  = `MY_LYON_RQ(YW, y_x, ZF, YFmt);
+    assign y_full  = (YXW'(1) <<< ZF) - $signed({2'b00, z_q});
+    assign y_d  = `MY_LYON_RQ(YW, y_full, ZF, YFmt);
     if (Norm == my_lyon_types::NormG1) begin : g_g1
-      assign g_x = (GXW'(1) <<< (YF + 1)) + GXW'($signed(y_d));
+      assign g_full = (GXW'(1) <<< (YF + 1)) + GXW'($signed(y_d));
     end else begin : g_g2
 `ifdef MY_LYON_BUG_G2
       // BUG (deliberate): the y^2 term is dropped, g = 1 + y/2.
-      assign g_x = (GXW'(1) <<< (2 * YF + 1)) + (GXW'($signed(y_d)) <<< YF);
+      assign g_full = (GXW'(1) <<< (2 * YF + 1)) + (GXW'($signed(y_d)) <<< YF);
 `else
-      logic signed [2*YW-1:0] yy_x;  // y^2, frac 2 YF
-      assign yy_x = $signed(y_d) * $signed(y_d);
-      assign g_x  = (GXW'(1) <<< (2 * YF + 1)) + (GXW'($signed(y_d)) <<< YF) + GXW'(yy_x);
+      logic signed [2*YW-1:0] yy_full;  // y^2, frac 2 YF
+      assign yy_full = $signed(y_d) * $signed(y_d);
+      assign g_full  = (GXW'(1) <<< (2 * YF + 1)) + (GXW'($signed(y_d)) <<< YF) + GXW'(yy_full);
 `endif
     end
-    assign g_d = `MY_LYON_RQ(GW, g_x, GFr, GFmt);
+    assign g_d = `MY_LYON_RQ(GW, g_full, GFr, GFmt);
 
     `MY_LYON_FF(en[SZ], z_q, z_d)
     `MY_LYON_FF(en[SG], y_q, y_d)
     `MY_LYON_FF(en[SG], g_q, g_d)
 
     for (genvar c = 0; c < 3; c++) begin : g_n
-      logic signed [NXW-1:0] n_x;
-      assign n_x = $signed({1'b0, g_q}) * $signed(np_q[SN-1][c*NpW+:NpW]);
-      assign n_d[c*NW+:NW] = `MY_LYON_RQ(NW, n_x, GF + NpF, NFmt);
+      logic signed [NXW-1:0] n_full;
+      assign n_full = $signed({1'b0, g_q}) * $signed(np_q[SN-1][c*NpW+:NpW]);
+      assign n_d[c*NW+:NW] = `MY_LYON_RQ(NW, n_full, GF + NpF, NFmt);
     end
 
     // y_q only shows y in a waveform; a hardware team would let synthesis remove it.
@@ -278,7 +288,7 @@ module my_lyon #(
 
   // ---------------------------------------------------------------------------------------------
   // Stage SDot: dot = rq(N.V, dot); diff = rq(N.L, diff) (unsigned: negative saturates to 0).
-  wire  [DotXW-1:0] dot_x, diff_x;
+  wire  [DotXW-1:0] dot_full, diff_full;
   wire  [DotW-1:0]  dot_d;
   logic [DotW-1:0]  dot_q;
   wire  [DiffW-1:0] diff_d;
@@ -289,10 +299,10 @@ module my_lyon #(
   assign n_at_dot = n_q[SN];
   assign v_at_dot = v_q[SN];
   assign l_at_dot = l_q[SN];
-  my_lyon_dot3 #(.AW(NW), .BW(VW)) u_dot (.a_i(n_at_dot), .b_i(v_at_dot), .sum_o(dot_x));
-  my_lyon_dot3 #(.AW(NW), .BW(VW)) u_diff (.a_i(n_at_dot), .b_i(l_at_dot), .sum_o(diff_x));
-  assign dot_d  = `MY_LYON_RQ(DotW, $signed(dot_x), NF + VF, DotFmt);
-  assign diff_d = `MY_LYON_RQ(DiffW, $signed(diff_x), NF + VF, DiffFmt);
+  my_lyon_dot3 #(.AW(NW), .BW(VW)) u_dot (.a_i(n_at_dot), .b_i(v_at_dot), .sum_o(dot_full));
+  my_lyon_dot3 #(.AW(NW), .BW(VW)) u_diff (.a_i(n_at_dot), .b_i(l_at_dot), .sum_o(diff_full));
+  assign dot_d  = `MY_LYON_RQ(DotW, $signed(dot_full), NF + VF, DotFmt);
+  assign diff_d = `MY_LYON_RQ(DiffW, $signed(diff_full), NF + VF, DiffFmt);
 
   `MY_LYON_FF(en[SDot], dot_q, dot_d)
   `MY_LYON_FF(en[SDot], diff_q[SDot], diff_d)
@@ -308,15 +318,15 @@ module my_lyon #(
   logic [3*DW-1:0] d_q;
 
   for (genvar c = 0; c < 3; c++) begin : g_reflect
-    logic signed [DotW+NW-1:0] dn_x;  // (N.V) N_c, frac DotF + NF
-    logic signed [RXW-1:0]     r_x;
-    logic signed [DXW-1:0]     d_x;
-    assign dn_x = $signed(dot_q) * $signed(n_q[SDot][c*NW+:NW]);
-    assign r_x  = (RXW'(dn_x) <<< 1) - (RXW'($signed(v_q[SDot][c*VW+:VW])) <<< RShift);
-    assign r_d[c*RW+:RW] = `MY_LYON_RQ(RW, r_x, DotF + NF, RFmt);
-    assign d_x  = (DXW'($signed(r_q[c*RW+:RW])) <<< (DFr - RF))
+    logic signed [DotW+NW-1:0] dn_full;  // (N.V) N_c, frac DotF + NF
+    logic signed [RXW-1:0]     r_full;
+    logic signed [DXW-1:0]     d_full;
+    assign dn_full = $signed(dot_q) * $signed(n_q[SDot][c*NW+:NW]);
+    assign r_full  = (RXW'(dn_full) <<< 1) - (RXW'($signed(v_q[SDot][c*VW+:VW])) <<< RShift);
+    assign r_d[c*RW+:RW] = `MY_LYON_RQ(RW, r_full, DotF + NF, RFmt);
+    assign d_full  = (DXW'($signed(r_q[c*RW+:RW])) <<< (DFr - RF))
                 - (DXW'($signed(l_q[SR][c*VW+:VW])) <<< (DFr - VF));
-    assign d_d[c*DW+:DW] = `MY_LYON_RQ(DW, d_x, DFr, DFmt);
+    assign d_d[c*DW+:DW] = `MY_LYON_RQ(DW, d_full, DFr, DFmt);
   end
 
   `MY_LYON_FF(en[SR], r_q, r_d)
@@ -325,21 +335,21 @@ module my_lyon #(
   // ---------------------------------------------------------------------------------------------
   // Stages SDd, SXf: dd = rq(D.D, dd); x/2^k = n dd 2^-(k+1) exact; zero = (x/2^k >= 1);
   // xf = rq(x/2^k, xf).
-  wire  [DdXW-1:0] dd_x;
+  wire  [DdXW-1:0] dd_full;
   wire  [DdW-1:0]  dd_d;
   logic [DdW-1:0]  dd_q;
-  logic [XXW-1:0]  x_x;
+  logic [XXW-1:0]  xk;
   wire  [XfW-1:0]  xf_d;
   logic [XfW-1:0]  xf_q;
   logic            zero_d;
   logic [NSt:SXf]  zero_q;  // spec is forced to 0 at the output
 
-  my_lyon_dot3 #(.AW(DW), .BW(DW)) u_dd (.a_i(d_q), .b_i(d_q), .sum_o(dd_x));
-  assign dd_d   = `MY_LYON_RQ(DdW, $signed(dd_x), 2 * DF, DdFmt);
+  my_lyon_dot3 #(.AW(DW), .BW(DW)) u_dd (.a_i(d_q), .b_i(d_q), .sum_o(dd_full));
+  assign dd_d   = `MY_LYON_RQ(DdW, $signed(dd_full), 2 * DF, DdFmt);
 
-  assign x_x    = shin_q[SDd] * dd_q;
-  assign zero_d = (x_x >> XFr) != '0;
-  assign xf_d   = `MY_LYON_RQ(XfW, $signed({1'b0, x_x}), XFr, XfFmt);
+  assign xk    = shin_q[SDd] * dd_q;
+  assign zero_d = (xk >> XFr) != '0;
+  assign xf_d   = `MY_LYON_RQ(XfW, $signed({1'b0, xk}), XFr, XfFmt);
 
   `MY_LYON_FF(en[SDd], dd_q, dd_d)
   `MY_LYON_FF(en[SXf], xf_q, xf_d)
@@ -351,26 +361,41 @@ module my_lyon #(
   // ---------------------------------------------------------------------------------------------
   // Stages SSq0 .. SSq0 + K: sq_0 = rq(1 - xf, sq); sq_j = rq(sq_(j-1)^2, sq).
   // Output stage: spec = zero ? 0 : rq(sq_K, spec).
-  logic [SqW-1:0] sq_q [0:K];  // sq_q[j] = sq_j, in stage SSq0 + j
-  logic signed [Sq0XW-1:0] sq0_x;
-  wire  [SqW-1:0] sq0_d;
+  logic [SqW-1:0] sq_0_q, sq_1_q, sq_2_q, sq_3_q;  // sq_j in stage SSq0 + j; 0 for j > K
+  logic signed [Sq0XW-1:0] sq0_full;
+  wire  [SqW-1:0]   sq_0_d, sq_k;
   wire  [SpecW-1:0] spec_d;
   logic [SpecW-1:0] spec_q;
 
-  assign sq0_x = (Sq0XW'(1) <<< XfF) - $signed({2'b00, xf_q});
-  assign sq0_d = `MY_LYON_RQ(SqW, sq0_x, XfF, SqFmt);
-  `MY_LYON_FF(en[SSq0], sq_q[0], sq0_d)
+  assign sq0_full = (Sq0XW'(1) <<< XfF) - $signed({2'b00, xf_q});
+  assign sq_0_d   = `MY_LYON_RQ(SqW, sq0_full, XfF, SqFmt);
+  `MY_LYON_FF(en[SSq0], sq_0_q, sq_0_d)
 
-  for (genvar j = 1; j <= K; j++) begin : g_square
-    logic [SqXW-1:0] sq_x;
-    wire  [SqW-1:0]  sq_d;
-    assign sq_x = sq_q[j-1] * sq_q[j-1];
-    assign sq_d = `MY_LYON_RQ(SqW, $signed({1'b0, sq_x}), 2 * SqF, SqFmt);
-    `MY_LYON_FF(en[SSq0+j], sq_q[j], sq_d)
+  if (K >= 1) begin : g_sq_1
+    wire [SqW-1:0] sq_1_d;
+    assign sq_1_d = `MY_LYON_SQUARE(sq_0_q);
+    `MY_LYON_FF(en[SSq0+1], sq_1_q, sq_1_d)
+  end else begin : g_no_sq_1
+    assign sq_1_q = '0;
   end
+  if (K >= 2) begin : g_sq_2
+    wire [SqW-1:0] sq_2_d;
+    assign sq_2_d = `MY_LYON_SQUARE(sq_1_q);
+    `MY_LYON_FF(en[SSq0+2], sq_2_q, sq_2_d)
+  end else begin : g_no_sq_2
+    assign sq_2_q = '0;
+  end
+  if (K >= 3) begin : g_sq_3
+    wire [SqW-1:0] sq_3_d;
+    assign sq_3_d = `MY_LYON_SQUARE(sq_2_q);
+    `MY_LYON_FF(en[SSq0+3], sq_3_q, sq_3_d)
+  end else begin : g_no_sq_3
+    assign sq_3_q = '0;
+  end
+  assign sq_k = K == 0 ? sq_0_q : K == 1 ? sq_1_q : K == 2 ? sq_2_q : sq_3_q;
 
   assign spec_d = zero_q[SSpec-1] ? '0
-                : `MY_LYON_RQ(SpecW, $signed({1'b0, sq_q[K]}), SqF, SpecFmt);
+                : `MY_LYON_RQ(SpecW, $signed({1'b0, sq_k}), SqF, SpecFmt);
   `MY_LYON_FF(en[SSpec], spec_q, spec_d)
 
   assign out_spec_o = spec_q;
