@@ -3,6 +3,7 @@
 // subcommand of its own (its own --help).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "base/output_file.h"
 #include "base/paths.h"
 #include "base/temporaries.h"
+#include "base/text.h"
 #include "sim/explore/search.h"
 #include "sim/explore/sweep.h"
 
@@ -42,11 +44,82 @@ std::function<void(std::size_t, std::size_t)> sweep_progress() {
 struct SweepFiles {
   std::string file;
   std::string out = "sweep-out";
+  Target rtl;  // the user's RTL (--rtl, -f, -F, -I, -D, --top): synthesized and verified per point
+  std::uint64_t verify_vectors = 20000;
 };
+
+// The user's RTL for every point: synthesized instead of phongsim's and co-simulated (under
+// random stalls) with the point's configuration. None without --rtl or -f.
+std::optional<SweepRtl> sweep_rtl(const SweepFiles& c) {
+  const RtlSources sources = c.rtl.checked_sources();
+  if (!c.rtl.user_rtl()) {
+    if (!c.rtl.top.empty()) throw Error("--top names the top of your RTL: give it (--rtl or -f)");
+    return std::nullopt;
+  }
+  SweepRtl r;
+  r.sources = sources;
+  r.top = c.rtl.top;
+  // The jobs of a plan run anywhere: absolute paths, the lists read into one --rtl.
+  r.options = " --rtl";
+  for (const fs::path& f : sources.files) r.options += " " + shell_quoted(fs::absolute(f).string());
+  for (const fs::path& d : sources.include_dirs) {
+    r.options += " " + shell_quoted("+incdir+" + fs::absolute(d).string());
+  }
+  for (const std::string& d : sources.defines) r.options += " " + shell_quoted("+define+" + d);
+  if (!r.top.empty()) r.options += " --top " + shell_quoted(r.top);
+  r.options += fmt::format(" --verify-vectors {}", c.verify_vectors);
+  // The design's identity in every point's result (merge refuses a mix): its top, defines and
+  // the content of its files, include folders' too, whatever the point's parameters.
+  ContentHash id;
+  const auto add_file = [&](const fs::path& f) { id.add(f.filename().string() + file_hash(f)); };
+  const auto add_folder = [&](const fs::path& d) {
+    std::vector<fs::path> in;
+    for (const auto& e : fs::directory_iterator(d)) {
+      const std::string ext = e.path().extension().string();
+      if (e.is_regular_file() && (ext == ".sv" || ext == ".v" || ext == ".svh" || ext == ".vh")) {
+        in.push_back(e.path());
+      }
+    }
+    std::sort(in.begin(), in.end());
+    for (const fs::path& f : in) add_file(f);
+  };
+  for (const fs::path& f : sources.files) fs::is_directory(f) ? add_folder(f) : add_file(f);
+  for (const fs::path& d : sources.include_dirs) add_folder(d);
+  for (const std::string& d : sources.defines) id.add("define " + d);
+  const std::string identity =
+      fmt::format("{} from --rtl ({})", r.top.empty() ? "the built-in top" : r.top,
+                  id.hex().substr(0, 16));
+  const Target rtl = c.rtl;
+  const std::uint64_t vectors = quick_cap(c.verify_vectors, kQuickVectors);
+  r.verify = [rtl, vectors, identity](const fs::path& config) {
+    Target t = rtl;
+    t.config = config.string();
+    const Loaded l = load(t);
+    CosimOptions o;
+    o.random_vectors = vectors;
+    o.source = StallPattern::parse("random:0.2");
+    o.sink = StallPattern::parse("random:0.5");
+    const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
+    const CosimReport rep = cosim(subject_of(l, t, stimulus), o);
+    if (!rep.passed) fmt::print(stderr, "{}", rep.failure);
+    return SweepRtl::Verdict{rep.passed, rep.summary(), identity,
+                             rep.measured ? static_cast<int>(rep.latency_max) : -1};
+  };
+  return r;
+}
+
+// Exit status of a sweep with the user's RTL: 1 when a point's co-simulation failed.
+int sweep_status(const std::vector<PointResult>& results) {
+  const std::string failed = failed_points(results);
+  if (failed.empty()) return 0;
+  fmt::print(stderr, "FAIL: {}\n", failed);
+  return 1;
+}
 
 int run_plan(const SweepFiles& c) {
   const SweepSpec spec = load_sweep_quick(c.file);
-  const auto points = plan_sweep(spec, c.out);
+  const std::optional<SweepRtl> rtl = sweep_rtl(c);
+  const auto points = plan_sweep(spec, c.out, rtl ? &*rtl : nullptr);
   fmt::print(
       "{} points: {}/points/*.toml; run {}/jobs.txt (e.g. parallel < jobs.txt, or a "
       "Slurm array: scripts/slurm-sweep.sh), or make -j -C {}; then phongsim sweep "
@@ -60,37 +133,42 @@ int run_merge(const SweepFiles& c) {
   const auto results = merge_sweep(spec, c.out);
   fmt::print("{} points merged: {}/sweep.csv, {}/summary.md{}\n", results.size(), c.out, c.out,
              spec.synth.generic || spec.synth.ice40 ? fmt::format(", {}/pareto.png", c.out) : "");
-  return 0;
+  return sweep_status(results);
 }
 
 int run_run(const SweepFiles& c) {
   const SweepSpec spec = load_sweep_quick(c.file);
-  const auto results = run_sweep(spec, c.out, sweep_progress(), stderr);
+  const std::optional<SweepRtl> rtl = sweep_rtl(c);
+  const auto results = run_sweep(spec, c.out, sweep_progress(), stderr, rtl ? &*rtl : nullptr);
   fmt::print("{}\n{} points: {}/sweep.csv, {}/summary.md\n",
              read_file(fs::path(c.out) / "summary.md"), results.size(), c.out, c.out);
-  return 0;
+  return sweep_status(results);
 }
 
 struct PointCli {
   std::string config, sweep, out;
   std::uint64_t index = 0;
+  SweepFiles rtl;  // its --rtl words and --verify-vectors (sweep_rtl)
 };
 
 int run_point(const PointCli& c) {
   check_distinct({{"--out", c.out}, {"--sweep", c.sweep}, {"CONFIG", c.config}});
   const SweepSpec spec = load_sweep_quick(c.sweep);
   OutputFile out(c.out);  // unwritable: fail before the work
-  const PointResult r = evaluate_point(spec, c.config, c.index, stderr);
+  const std::optional<SweepRtl> rtl = sweep_rtl(c.rtl);
+  const PointResult r = evaluate_point(spec, c.config, c.index, stderr, rtl ? &*rtl : nullptr);
   std::fputs(point_result_json(r).c_str(), out.get());
   out.commit();
-  fmt::print("point {}: max error {:.4g} LSB{}\n", c.index, r.error.max_lsb,
-             r.synthesized && r.synth.cells >= 0 ? fmt::format(", {} cells", r.synth.cells) : "");
-  return 0;
+  fmt::print("point {}: max error {:.4g} LSB{}{}\n", c.index, r.error.max_lsb,
+             r.synthesized && r.synth.cells >= 0 ? fmt::format(", {} cells", r.synth.cells) : "",
+             r.verified ? fmt::format("; {}", r.verification) : "");
+  return r.verified.value_or(true) ? 0 : 1;
 }
 
 struct SearchCli {
   std::string file, out, json, junit;
   bool verify = true;
+  Target rtl;  // the user's RTL (--rtl, -f, -F, -I, -D, --top): what the verification runs
 };
 
 int run_search(const SearchCli& c) {
@@ -102,6 +180,10 @@ int run_search(const SearchCli& c) {
                             : fs::path(c.out);
   if (!c.junit.empty() && !c.verify)
     throw Error("--junit reports the verification: not with --no-verify");
+  if (c.rtl.user_rtl() && !c.verify) {
+    throw Error("--rtl is what the verification runs: not with --no-verify");
+  }
+  (void)c.rtl.checked_sources();  // -I or -D without RTL
   check_distinct({{"--out", dest},
                   {"--json", c.json},
                   {"--junit", c.junit},
@@ -148,7 +230,7 @@ int run_search(const SearchCli& c) {
       std::fputs(r.toml.c_str(), f.get());
       f.commit();
     }
-    Target t;
+    Target t = c.rtl;  // the user's RTL, or phongsim's
     t.config = candidate.string();
     const Loaded l = load(t);
     CosimOptions o;
@@ -170,8 +252,8 @@ int run_search(const SearchCli& c) {
     }
     if (!rep.passed) {
       fmt::print(text, "{}", rep.failure);
-      throw Error(fmt::format("the found configuration fails co-simulation; not written to {}",
-                              dest.string()));
+      throw DesignFailure(fmt::format(
+          "the found configuration fails co-simulation; not written to {}", dest.string()));
     }
     fmt::print(text, "verified: {}\n", rep.summary());
     j["verified"] = {{"passed", rep.passed},
@@ -189,6 +271,15 @@ int run_search(const SearchCli& c) {
 
 }  // namespace
 
+// --rtl, -f, -F, -I, -D, --top and --verify-vectors of run, plan and point.
+void add_rtl_options(CLI::App& cmd, SweepFiles& c) {
+  c.rtl.add_source_options(cmd);
+  add_count(cmd, "--verify-vectors", c.verify_vectors,
+            "with your RTL: random vectors of each point's co-simulation (under random stalls)",
+            kMaxVectors)
+      ->capture_default_str();
+}
+
 void add_sweep(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "sweep",
@@ -203,6 +294,7 @@ void add_sweep(CLI::App& app, Action& action) {
     sub->add_option("file", c->file, "the sweep file")->required();
     sub->add_option("--out", c->out, "the sweep's directory (docs/exploration.md)")
         ->capture_default_str();
+    if (run != run_merge) add_rtl_options(*sub, *c);
     sub->callback([c, run, &action]() { action = [c, run]() { return run(*c); }; });
   };
   add_files("run", "plan, evaluate every point here, merge: DIR/sweep.csv, summary.md, pareto.*",
@@ -222,6 +314,7 @@ void add_sweep(CLI::App& app, Action& action) {
   p->add_option("--sweep", point->sweep, "the sweep file it belongs to")->required();
   add_count(*p, "--index", point->index, "the point's index", kMaxSweepPoints - 1)->required();
   p->add_option("--out", point->out, "the result JSON (DIR/results/NNNN.json)")->required();
+  add_rtl_options(*p, point->rtl);
   p->callback([point, &action]() { action = [point]() { return run_point(*point); }; });
 
   auto search = std::make_shared<SearchCli>();
@@ -237,6 +330,7 @@ void add_sweep(CLI::App& app, Action& action) {
                 "write the verification's co-simulation as JUnit XML (as cosim --junit)");
   s->add_flag("!--no-verify", search->verify,
               "skip Verilating and co-simulating the found configuration");
+  search->rtl.add_source_options(*s);
   s->callback([search, &action]() { action = [search]() { return run_search(*search); }; });
 }
 

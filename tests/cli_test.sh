@@ -448,6 +448,45 @@ EOT
       "$phongsim" render --method phong -F "$list" --pipeline lyon --out "$tmp/r3"
     ;;
 
+  sweep-rtl)
+    # docs/exploration.md, "Your RTL in a sweep": every point synthesizes and co-simulates the
+    # user's design (examples/your-rtl/tree); a failing point fails the sweep (exit 1) and the
+    # table says which; results of two designs do not merge; sweep search verifies the found
+    # configuration on the user's design.
+    list="$src/examples/your-rtl/tree/lists/files.f"
+    printf '%s\n' 'name = "two"' "base = \"$default\"" '[axes]' '"format.p" = { frac = [9, 10] }' \
+      '[error]' 'samples = 2000' >"$tmp/two.toml"
+    "$phongsim" sweep run "$tmp/two.toml" --out "$tmp/a" -F "$list" --top my_lirp_top \
+      --verify-vectors 3000 >"$tmp/out" 2>&1 || fail "sweep run: $(cat "$tmp/out")"
+    grep -q "^RTL: my_lirp_top from --rtl ([0-9a-f]*); co-simulated at every point: all pass" "$tmp/a/summary.md" ||
+      fail "summary: $(cat "$tmp/a/summary.md")"
+    python3 - "$tmp/a/sweep.csv" <<'EOT' || fail "sweep.csv: $(cat "$tmp/a/sweep.csv")"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 2 and all(r["rtl_passed"] == "1" for r in rows), rows
+assert all(r["latency"] == "4" for r in rows), rows  # my_lirp's measured latency, not lirp_unit's 3
+EOT
+    grep -q -- "--rtl $src/examples/your-rtl/tree/lists/../src/my_lirp_top.sv .* +incdir+$src/examples/your-rtl/tree/lists/../inc --top my_lirp_top --verify-vectors 3000$" "$tmp/a/jobs.txt" ||
+      fail "jobs.txt: $(cat "$tmp/a/jobs.txt")"
+    # The bug at one point: that point fails (exit 1), and merging it with the others' is refused.
+    "$phongsim" sweep point "$tmp/a/points/0001.toml" --sweep "$tmp/two.toml" --index 1 \
+      --out "$tmp/a/results/0001.json" -F "$list" --top my_lirp_top -D MY_LIRP_TIES_UP=1 \
+      --verify-vectors 3000 >"$tmp/p" 2>&1
+    [ $? -eq 1 ] || fail "a failing point: $(cat "$tmp/p")"
+    python3 -c 'import json,sys; assert json.load(open(sys.argv[1]))["verified"]["passed"] is False' "$tmp/a/results/0001.json" || fail "result: $(cat "$tmp/a/results/0001.json")"
+    expect_error "point 0 was evaluated with my_lirp_top from --rtl \([0-9a-f]*\), point 1 with my_lirp_top from --rtl \([0-9a-f]*\): run the sweep again with one design" \
+      "$phongsim" sweep merge "$tmp/two.toml" --out "$tmp/a"
+    printf '%s\n' 'name = "found"' "base = \"$default\"" 'signals = ["p"]' 'min_frac = 8' \
+      'max_lsb = 4.0' 'samples = 2000' 'verify_vectors = 3000' >"$tmp/search.toml"
+    "$phongsim" sweep search "$tmp/search.toml" --out "$tmp/found.toml" -F "$list" --top my_lirp_top \
+      -D MY_LIRP_TIES_UP=1 >"$tmp/s" 2>&1
+    [ $? -eq 1 ] && grep -q "FAIL: the found configuration fails co-simulation; not written" "$tmp/s" &&
+      grep -q -- "-D MY_LIRP_TIES_UP=1 --top my_lirp_top" "$tmp/s" || fail "search with the bug: $(cat "$tmp/s")"
+    [ ! -e "$tmp/found.toml" ] || fail "a failing search wrote its configuration"
+    expect_error "--rtl is what the verification runs: not with --no-verify" \
+      "$phongsim" sweep search "$tmp/search.toml" --out "$tmp/found.toml" -F "$list" --no-verify
+    ;;
+
   stage-report)
     # docs/your-rtl.md, "Stage reports and waveforms": phongsim's LIRP with one register broken
     # (delta_q's LSB flipped) fails with a one-line message naming the first stage to differ,

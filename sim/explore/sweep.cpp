@@ -261,7 +261,7 @@ std::vector<SweepPoint> expand(const SweepSpec& spec) {
 }
 
 PointResult evaluate_point(const SweepSpec& spec, const fs::path& config, std::size_t index,
-                           std::FILE* log) {
+                           std::FILE* log, const SweepRtl* rtl) {
   const auto start = std::chrono::steady_clock::now();
   const Config cfg = Config::load(config);
   PointResult r;
@@ -278,9 +278,17 @@ PointResult evaluate_point(const SweepSpec& spec, const fs::path& config, std::s
     r.psnr.emplace_back(sc.scene, m.psnr);
   }
   if (spec.synth.generic || spec.synth.ice40) {
-    r.synth =
-        synthesize(rtl_design(find_pipeline(cfg.pipeline()), cfg), cfg.origin(), spec.synth, log);
+    r.synth = synthesize(rtl != nullptr ? rtl_design(pipeline, cfg, rtl->sources, rtl->top)
+                                        : rtl_design(pipeline, cfg),
+                         cfg.origin(), spec.synth, log);
     r.synthesized = true;
+  }
+  if (rtl != nullptr) {
+    const SweepRtl::Verdict v = rtl->verify(config);
+    r.rtl = v.rtl;
+    r.verified = v.passed;
+    r.verification = v.summary;
+    if (v.latency >= 0) r.latency = v.latency;
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
@@ -327,7 +335,10 @@ nlohmann::json to_json(const PointResult& r) {
                                                {"cached", r.synth.cached}}
                               : nlohmann::json(nullptr)},
       {"latency", r.latency},
-      {"seconds", r.seconds}};
+      {"seconds", r.seconds},
+      {"rtl", r.rtl.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.rtl)},
+      {"verified", r.verified ? nlohmann::json{{"passed", *r.verified}, {"summary", r.verification}}
+                              : nlohmann::json(nullptr)}};
 }
 
 PointResult from_json(const nlohmann::json& j) {
@@ -364,6 +375,11 @@ PointResult from_json(const nlohmann::json& j) {
   }
   r.latency = j.at("latency").get<int>();
   r.seconds = j.at("seconds").get<double>();
+  if (j.contains("rtl") && !j.at("rtl").is_null()) r.rtl = j.at("rtl").get<std::string>();
+  if (j.contains("verified") && !j.at("verified").is_null()) {
+    r.verified = j.at("verified").at("passed").get<bool>();
+    r.verification = j.at("verified").at("summary").get<std::string>();
+  }
   return r;
 }
 
@@ -397,7 +413,8 @@ void write_point_result(const PointResult& r, const fs::path& path) {
   write_text(path, point_result_json(r));
 }
 
-std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const fs::path& out) {
+std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const fs::path& out,
+                                   const SweepRtl* rtl) {
   const std::vector<SweepPoint> points = expand(spec);
   // The plan appears whole or not at all; planning again replaces the plan and what was merged
   // from the old one.
@@ -411,9 +428,9 @@ std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const fs::path& out) {
   for (const SweepPoint& p : points) {
     std::fputs(p.toml.c_str(), set.add(point_file(p.index)).get());
     const std::string cmd =
-        fmt::format("{} sweep point {} --sweep {} --index {} --out {}", exe.string(),
+        fmt::format("{} sweep point {} --sweep {} --index {} --out {}{}", exe.string(),
                     (dir / point_file(p.index)).string(), sweep.string(), p.index,
-                    (dir / result_file(p.index)).string());
+                    (dir / result_file(p.index)).string(), rtl != nullptr ? rtl->options : "");
     jobs += cmd + "\n";
     make += fmt::format(" results/{:04}.json", p.index);
     rules += fmt::format("results/{:04}.json:\n\t{}\n", p.index, cmd);
@@ -486,6 +503,16 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     r.base = p.base.string();
     results.push_back(std::move(r));
   }
+  // One design: the user's (the same in every result) or phongsim's.
+  for (const PointResult& r : results) {
+    if (r.rtl != results.front().rtl) {
+      throw Error(fmt::format(
+          "point {} was evaluated with {}, point {} with {}: run the sweep again with one design",
+          results.front().index, results.front().rtl.empty() ? "phongsim's RTL" : results.front().rtl,
+          r.index, r.rtl.empty() ? "phongsim's RTL" : r.rtl));
+    }
+  }
+  const bool user_rtl = !results.empty() && !results.front().rtl.empty();
   const bool synth = spec.synth.generic || spec.synth.ice40;
   std::vector<bool> pareto;
   for (const PointResult& r : results) pareto.push_back(on_pareto_front(spec, r, results));
@@ -496,7 +523,8 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
   for (const auto& a : spec.axes) csv += "," + a.key;
   csv += ",max_error_lsb,mean_error_lsb,max_error_abs";
   for (const auto& sc : spec.scenes) csv += fmt::format(",cc_{0},psnr_{0}", sc.scene);
-  csv += ",cells,transistors,depth,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency,pareto\n";
+  csv += ",cells,transistors,depth,lut4,carry,mac16,ff,ice40_fits,fmax_mhz,latency,pareto";
+  csv += user_rtl ? ",rtl_passed\n" : "\n";
   for (std::size_t k = 0; k < results.size(); ++k) {
     const PointResult& r = results[k];
     const Config cfg = Config::load(out / point_file(r.index));
@@ -517,7 +545,8 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
                        ice40 ? count(r.synth.carry) : "", ice40 ? count(r.synth.mac16) : "",
                        ice40 ? count(r.synth.ff) : "", ice40 ? (r.synth.fits ? "1" : "0") : "",
                        ice40 && r.synth.fits ? fmt::format("{:.2f}", r.synth.fmax_mhz) : "");
-    csv += fmt::format(",{},{}\n", r.latency, synth ? (pareto[k] ? "1" : "0") : "");
+    csv += fmt::format(",{},{}", r.latency, synth ? (pareto[k] ? "1" : "0") : "");
+    csv += user_rtl ? fmt::format(",{}\n", r.verified.value_or(false) ? 1 : 0) : "\n";
   }
   OutputSet set(out, "sweep merge", {"sweep merge"});
   std::fputs(csv.c_str(), set.add("sweep.csv").get());
@@ -525,6 +554,12 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
   std::string md =
       fmt::format("# Sweep {}\n\n`{}`: {} points, error over {} samples (seed {})\n\n", spec.name,
                   spec.file.string(), results.size(), spec.samples, spec.seed);
+  if (user_rtl) {
+    const std::string failed = failed_points(results);
+    md += fmt::format("RTL: {}; {}{}\n\n", results.front().rtl,
+                      spec.synth.generic || spec.synth.ice40 ? "synthesized and " : "",
+                      failed.empty() ? "co-simulated at every point: all pass" : failed);
+  }
   md += "| # | base |";
   std::string rule = "|---|---|";
   for (const auto& a : spec.axes) {
@@ -551,6 +586,10 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     md += " Pareto |";
     rule += "---|";
   }
+  if (user_rtl) {
+    md += " RTL |";
+    rule += "---|";
+  }
   md += "\n" + rule + "\n";
   for (std::size_t k = 0; k < results.size(); ++k) {
     const PointResult& r = results[k];
@@ -567,6 +606,7 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     }
     md += fmt::format(" {} |", r.latency);
     if (synth) md += pareto[k] ? " yes |" : " |";
+    if (user_rtl) md += r.verified.value_or(false) ? " PASS |" : " FAIL |";
     md += "\n";
   }
   std::fputs(md.c_str(), set.add("summary.md").get());
@@ -617,15 +657,25 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
 
 std::vector<PointResult> run_sweep(const SweepSpec& spec, const fs::path& out,
                                    const std::function<void(std::size_t, std::size_t)>& progress,
-                                   std::FILE* log) {
-  const std::vector<SweepPoint> points = plan_sweep(spec, out);
+                                   std::FILE* log, const SweepRtl* rtl) {
+  const std::vector<SweepPoint> points = plan_sweep(spec, out, rtl);
   for (const SweepPoint& p : points) {
     progress(p.index, points.size());
-    PointResult r = evaluate_point(spec, out / point_file(p.index), p.index, log);
+    PointResult r = evaluate_point(spec, out / point_file(p.index), p.index, log, rtl);
     write_point_result(r, out / result_file(p.index));
   }
   progress(points.size(), points.size());
   return merge_sweep(spec, out);
+}
+
+std::string failed_points(const std::vector<PointResult>& results) {
+  std::vector<std::string> failed;
+  for (const PointResult& r : results) {
+    if (r.verified && !*r.verified) failed.push_back(fmt::format("{:04}", r.index));
+  }
+  if (failed.empty()) return "";
+  return fmt::format("{} of {} points fail co-simulation: {}", failed.size(), results.size(),
+                     fmt::join(failed, ", "));
 }
 
 }  // namespace phongsim

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "model/config.h"
+#include "sim/cosim/rtl_args.h"
 #include "sim/explore/synth.h"
 #include "sim/pipelines/registry.h"
 
@@ -78,19 +79,42 @@ struct PointResult {
   std::vector<std::pair<std::string, double>> psnr;                // per scene
   SynthResult synth;
   bool synthesized = false;
-  int latency = 0;
+  int latency = 0;  // the built-in unit's, or the user's RTL's as measured
   double seconds = 0;
+  // With the user's RTL (SweepRtl): which design, and its co-simulation at this point.
+  std::string rtl;                  // SweepRtl::Verdict::rtl; "" for phongsim's
+  std::optional<bool> verified;     // passed or not; none without the user's RTL
+  std::string verification;         // the co-simulation's summary line
 };
 
-// Evaluates one point's configuration file (the sweep's error/scene/synthesis settings).
+// The user's RTL in a sweep (docs/exploration.md, "Your RTL in a sweep"): every point
+// synthesizes it instead of phongsim's and co-simulates it with the point's configuration.
+struct SweepRtl {
+  RtlSources sources;
+  std::string top;      // empty: the built-in top's name
+  std::string options;  // the command-line words that name it again (for jobs.txt)
+  struct Verdict {
+    bool passed = false;
+    std::string summary;  // the co-simulation's summary line
+    std::string rtl;      // the design's identity, the same at every point (top, content hash)
+    int latency = -1;     // measured (stall-free), cycles; -1: not measured
+  };
+  std::function<Verdict(const std::filesystem::path& config)> verify;
+};
+
+// Evaluates one point's configuration file (the sweep's error/scene/synthesis settings), with
+// the user's RTL when `rtl` is given.
 [[nodiscard]] PointResult evaluate_point(const SweepSpec& spec, const std::filesystem::path& config,
-                                         std::size_t index, std::FILE* log);
+                                         std::size_t index, std::FILE* log,
+                                         const SweepRtl* rtl = nullptr);
 
 // Writes <out>/points/NNNN.toml for every point, <out>/jobs.txt (one `phongsim sweep point` per
 // line: `parallel < jobs.txt`, or line $SLURM_ARRAY_TASK_ID + 1 in a Slurm array job) and
 // <out>/Makefile (`make -j`), all or none (an OutputSet, "sweep plan": planning again replaces
 // the plan and the merged tables), and makes <out>/results/. Returns the points.
-std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const std::filesystem::path& out);
+// With `rtl`, each job names the user's RTL too (SweepRtl::options).
+std::vector<SweepPoint> plan_sweep(const SweepSpec& spec, const std::filesystem::path& out,
+                                   const SweepRtl* rtl = nullptr);
 
 // The hash a point result keeps of its configuration's content.
 [[nodiscard]] std::string content_hash(const std::string& text);
@@ -103,7 +127,8 @@ void write_point_result(const PointResult& r, const std::filesystem::path& path)
 // marked) and, with synthesis, <out>/pareto.csv and pareto.png (scripts/plot.py pareto: max
 // error against area, one series per variant, the front drawn and its points labelled), all or
 // none (an OutputSet, "sweep merge"). Error when a planned point has no result yet, or one
-// computed from another version of its point (naming it).
+// computed from another version of its point, or results of different RTL (naming it).
+// Results with the user's RTL carry its verdicts: summary.md has a column of them.
 std::vector<PointResult> merge_sweep(const SweepSpec& spec, const std::filesystem::path& out);
 
 // Whether the Pareto column of `r` (among `results`) is set: no other point has both less or
@@ -114,6 +139,10 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const std::filesyste
 // `run`: plan, evaluate every point in this process (progress on `progress`), merge.
 std::vector<PointResult> run_sweep(const SweepSpec& spec, const std::filesystem::path& out,
                                    const std::function<void(std::size_t, std::size_t)>& progress,
-                                   std::FILE* log);
+                                   std::FILE* log, const SweepRtl* rtl = nullptr);
+
+// The points whose co-simulation of the user's RTL failed ("" when none): "3 of 12 points
+// fail co-simulation: 0004, 0007, 0011".
+[[nodiscard]] std::string failed_points(const std::vector<PointResult>& results);
 
 }  // namespace phongsim
