@@ -1,9 +1,10 @@
-// RTL code coverage of co-simulations (`phongsim cosim --coverage DIR`, docs/verification.md).
+// RTL code coverage of co-simulations (`phongsim cosim --coverage DIR`, docs/cosim.md).
 // A coverage plugin (RtlDesign::coverage: Verilator --coverage-line --coverage-toggle) makes
 // DUTs that write their counts, one Verilator coverage.dat file each, into DIR/data when they
 // are destroyed; merge_coverage() merges every file there — this run's and earlier runs' into
-// the same DIR — into DIR/coverage.info (lcov, by verilator_coverage) and an HTML report in
-// DIR/html (genhtml, Debian's lcov), and counts the points.
+// the same DIR — counts the points (waived ones left out), lists the design's signals Verilator
+// counts no toggles of, and writes DIR/coverage.info (lcov) and an HTML report in DIR/html
+// (genhtml, Debian's lcov) whose figures are the counted ones.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,9 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include "sim/cosim/rtl_dut.h"
+#include "sim/cosim/waveform.h"
 
 namespace phongsim {
 
@@ -30,23 +34,69 @@ struct LineWaiver {
   std::string reason;
 };
 
+// A waiver of the user's (`cosim --waivers FILE`, docs/cosim.md "Waivers"), one line of the file:
+//
+//   SOURCE[:LINE[-LAST]] [/REGEX/] [@INSTANCE] REASON
+//
+// It leaves out the line and branch points of the source file SOURCE (its name or its path's
+// end, matched at a '/' against the path Verilator read) that lie on the lines given: LINE..LAST,
+// or every line whose text REGEX (ECMAScript, searched; `\/` for a '/') matches, or, with
+// neither, the whole file. A point lies on the lines of its statements (Verilator's S: an if
+// arm's or case item's body), a point without statements (an if's implicit else) on its `if`'s
+// line. @INSTANCE (a regex searched in Verilator's hierarchy, "top.my_top.u_x") narrows it to
+// some instances. A waiver that leaves out no point, and a waived point that was reached, are
+// errors naming the waiver's FILE:LINE.
+struct UserWaiver {
+  std::string origin;  // "waivers.txt:3": where it is written, for messages and the report
+  std::string file;    // SOURCE
+  int first_line = 0;  // LINE..LAST; 0: none given
+  int last_line = 0;
+  std::string pattern;   // REGEX; "": none given
+  std::string instance;  // INSTANCE; "": every instance
+  std::string reason;
+  // "my_lirp.sv:61-62", "my_lirp.sv /default:/" or "my_lirp.sv", and " @INSTANCE".
+  [[nodiscard]] std::string where() const;
+};
+
+// The waivers of a waiver file: one a line, `#` comment lines and blank lines skipped. Error
+// "FILE:LINE: what is wrong" for the first line it cannot read (no reason, a bad range or
+// regex), and for a file it cannot read.
+[[nodiscard]] std::vector<UserWaiver> read_waivers(const std::filesystem::path& file);
+
 // A line point a waiver left out: Verilator's file, statement lines ("78-79") and instance
-// hierarchy, and the waiver's reason.
+// hierarchy, and the waiver's reason; `waiver` is the user's waiver ("waivers.txt:3"), "" for
+// a configuration's (LineWaiver).
 struct WaivedPoint {
   std::string file;
   std::string lines;
   std::string instance;
   std::string reason;
+  std::string waiver;
+};
+
+// A signal of the design that Verilator counted no toggles of: its path in the waveform
+// ("top.my_lirp.g_component[0].m0_q"; an unpacked array once, by its name), its bits and why
+// ("in a generate or named block", "real", "longint", "300 bits, over the toggle limit (256)",
+// "no toggle point (coverage_off?)").
+struct UncountedSignal {
+  std::string path;
+  std::uint64_t bits = 0;
+  std::string why;
 };
 
 struct CoverageSummary {
   std::uint64_t files = 0;          // coverage.dat files merged
   std::uint64_t line_points = 0;    // Verilator's line and branch points (statements, if/case arms)
   std::uint64_t line_hit = 0;       // ... reached at least once
-  std::uint64_t line_waived = 0;    // points a LineWaiver leaves out of the two above
+  std::uint64_t line_waived = 0;    // points a waiver leaves out of the two above
   std::vector<WaivedPoint> waived;  // ... each, in key order
-  std::uint64_t toggle_points = 0;  // one per signal bit and direction (0->1, 1->0)
-  std::uint64_t toggle_hit = 0;
+  std::uint64_t toggle_points = 0;  // one per signal bit (Verilator counts its changes)
+  std::uint64_t toggle_hit = 0;     // ... that changed at least once
+  // With the design's signals given (CoverageInputs::signals) and toggles measured: the signals
+  // without a toggle point, in waveform order; their bits are in neither toggle figure.
+  bool signals_checked = false;
+  std::vector<UncountedSignal> not_toggled;
+  [[nodiscard]] std::uint64_t not_toggled_bits() const;
   [[nodiscard]] double line_percent() const;    // 100 * hit / points; 0 without points
   [[nodiscard]] double toggle_percent() const;  // likewise
   // False when the data has no toggle point: every run had a line-only build
@@ -54,20 +104,44 @@ struct CoverageSummary {
   [[nodiscard]] bool toggles_measured() const { return toggle_points > 0; }
 };
 
+// What the counting takes besides the points.
+struct CoverageInputs {
+  std::vector<LineWaiver> line_waivers;  // the configurations' (CoverpointSampler::line_waivers)
+  std::vector<UserWaiver> user_waivers;  // cosim --waivers
+  // The design's signals (design_signals(), of every configuration run); empty: not checked.
+  std::vector<WaveSignal> signals;
+};
+
 // The prefix a run's DUTs write their files under (RtlLibrary::create): DIR/data/<time>-<pid>-,
 // unique per phongsim process. Creates DIR/data.
 [[nodiscard]] std::string coverage_prefix(const std::filesystem::path& dir);
 
-// Counts points (Verilator coverage keys, "\x01name\x02value..." with page, f, l, S, h, and
+// The signals of a DUT's design as its waveform (FST) declares them: a trace of its reset
+// written to a temporary file and read back. Make the DUT without a coverage prefix: it is not
+// a run, its counts are not wanted.
+[[nodiscard]] std::vector<WaveSignal> design_signals(RtlDut& dut);
+
+// Counts points (Verilator coverage keys, "\x01name\x02value..." with page, f, l, S, h, o, and
 // their counts summed over files) into a summary, files 0: merge_coverage()'s counting. Error
-// when a point a waiver matches was reached.
+// when a point a waiver matches was reached, and when a user's waiver matches no point.
+[[nodiscard]] CoverageSummary count_coverage_points(
+    const std::map<std::string, std::uint64_t>& points, const CoverageInputs& inputs);
 [[nodiscard]] CoverageSummary count_coverage_points(
     const std::map<std::string, std::uint64_t>& points, std::span<const LineWaiver> waivers);
 
-// Merges DIR/data/*.dat into DIR/coverage.info and DIR/html (replacing both) and counts the
-// points, each point's count summed over the files, the line points `waivers` match left out (the
-// lcov file and the report keep them). Error when there is no file, a tool fails, or a waived
-// point was reached (its reason is wrong).
+// The lcov file of the points (DIR/coverage.info): per source file, a branch record (BRDA) per
+// line or branch point, the lines of their statements (DA: a line's count is the smallest of
+// the points on it), and a function record (FN, FNDA) per toggle point named after its signal
+// bit ("top.my_lirp.valid_q[3]"); waived points (as counted) left out. genhtml's Branches and
+// Functions figures are then the summary's line and toggle figures.
+[[nodiscard]] std::string lcov_info(const std::map<std::string, std::uint64_t>& points,
+                                    const CoverageInputs& inputs);
+
+// Merges DIR/data/*.dat and counts the points, each point's count summed over the files, and
+// writes DIR/coverage.info (lcov_info) and DIR/html (genhtml; both replaced). Error when there
+// is no file, genhtml fails, a waived point was reached (its reason is wrong) or a user's waiver
+// matches no point (stale): then nothing is written.
+CoverageSummary merge_coverage(const std::filesystem::path& dir, const CoverageInputs& inputs);
 CoverageSummary merge_coverage(const std::filesystem::path& dir,
                                std::span<const LineWaiver> waivers = {});
 
