@@ -381,6 +381,13 @@ EOT
     eval "$repro" >"$tmp/f" 2>&1
     [ $? -eq 1 ] && [ "$(grep '^MISMATCH' "$tmp/f")" = "$(grep '^MISMATCH' "$tmp/e")" ] ||
       fail "the reproduce line: $(cat "$tmp/f")"
+    # An edited list (the same define, now in the list): never the old result.
+    cp "$t/lists/files.f" "$tmp/files.f.orig"
+    echo "+define+MY_LIRP_TIES_UP=1" >>"$t/lists/files.f"
+    run -F "$t/lists/files.f" >"$tmp/l" 2>&1
+    [ $? -eq 1 ] && grep -q "^FAIL lirp/default: .*MY_LIRP_TIES_UP=1" "$tmp/l" ||
+      fail "a define added to the list: $(cat "$tmp/l")"
+    cp "$tmp/files.f.orig" "$t/lists/files.f"
     # Without the include folder: one line naming the include.
     grep -v incdir "$t/lists/files.f" >"$t/lists/noinc.f"
     expect_error "Cannot find include file: my_lirp_top.svh" run -F "$t/lists/noinc.f"

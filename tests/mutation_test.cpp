@@ -47,7 +47,7 @@ std::size_t Count(const std::string& text, std::string_view what) {
 // The first line of the failure report ("MISMATCH at cycle 123, vector 45 ...").
 std::string FirstFailure(const std::string& out) {
   static const std::regex first(
-      R"(^(MISMATCH|UNEXPECTED OUTPUT|DEADLOCK|HANDSHAKE VIOLATION)[^\n]*)", std::regex::multiline);
+      R"(^(MISMATCH|UNEXPECTED OUTPUT|DEADLOCK|HANDSHAKE VIOLATION|RTL ASSERTION)[^\n]*)", std::regex::multiline);
   std::smatch m;
   return std::regex_search(out, m, first) ? m.str() : "";
 }
@@ -98,7 +98,7 @@ TEST_P(MutationTest, IsCaughtAndReproduces) {
   ASSERT_FALSE(failure.empty()) << r.out;
   EXPECT_NE(r.out.find("waveform of cycles"), std::string::npos) << r.out;
   if (!m.report.empty()) {  // seen by an RTL assertion, not by comparing outputs
-    EXPECT_TRUE(failure.starts_with("HANDSHAKE VIOLATION")) << r.out;
+    EXPECT_TRUE(failure.starts_with("RTL ASSERTION")) << r.out;
     EXPECT_NE(r.out.find(m.report), std::string::npos) << r.out;
   }
   ASSERT_TRUE(fs::exists(trace) && fs::file_size(trace) > 0);

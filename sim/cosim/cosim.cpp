@@ -532,9 +532,12 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus,
       phase.report += fmt::format("  the output due next is vector {}'s\n", *due);
     }
     phase.detail.vector = board.next_due();
-  } else if (phase.harness.reason == StopReason::protocol) {
-    phase.kind = "protocol";
-    phase.report = fmt::format("HANDSHAKE VIOLATION: {}\n", phase.harness.message);
+  } else if (phase.harness.reason == StopReason::protocol ||
+             phase.harness.reason == StopReason::assertion) {
+    const bool protocol = phase.harness.reason == StopReason::protocol;
+    phase.kind = protocol ? "protocol" : "assertion";
+    phase.report = fmt::format("{}: {}\n", protocol ? "HANDSHAKE VIOLATION" : "RTL ASSERTION",
+                               phase.harness.message);
     if (const auto due = board.next_due()) {
       phase.report += fmt::format("  the offending output is the one due for vector {}\n", *due);
     }

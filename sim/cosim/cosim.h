@@ -64,7 +64,8 @@ struct FieldComparison {
 
 // The first failure as data — the same facts as the text report, for JSON (docs/json.md).
 struct CosimFailure {
-  std::string kind;  // "mismatch", "unexpected output", "deadlock", "protocol", "unknown value"
+  std::string kind;  // "mismatch", "unexpected output", "deadlock", "protocol", "assertion",
+                    // "unknown value"
   std::uint64_t cycle = 0;               // the cycle it was detected in
   std::optional<std::uint64_t> vector;   // mismatch: the vector owning the output; deadlock,
                                          // protocol: the vector owing the next output

@@ -174,8 +174,10 @@ HarnessResult run_harness(RtlDut& dut, std::size_t input_fields, std::size_t out
         r.cycles = st.cycle;
         return r;
       case LoopStop::assertion:
-        r.reason = StopReason::protocol;
-        r.message = fmt::format("cycle {}: an RTL assertion failed (message above)", st.cycle);
+        r.reason = StopReason::assertion;
+        r.message = fmt::format(
+            "cycle {}: the design's $error, $fatal or assertion fired (its message above)",
+            st.cycle);
         r.cycles = st.cycle + 1;
         return r;
     }

@@ -57,11 +57,11 @@ struct HarnessHooks {
 };
 
 // unknown_value: a four-state DUT showed X or Z where a value was due (UnknownValue).
-enum class StopReason { finished, stopped_by_hook, deadlock, protocol, unknown_value };
+enum class StopReason { finished, stopped_by_hook, deadlock, protocol, assertion, unknown_value };
 
 struct HarnessResult {
   StopReason reason = StopReason::finished;
-  std::string message;       // for deadlock, protocol and unknown_value errors
+  std::string message;       // for deadlock, protocol, assertion and unknown_value errors
   std::uint64_t cycles = 0;  // up to the stop (finished: the cycle all outputs were in)
   std::uint64_t inputs = 0;
   std::uint64_t outputs = 0;
