@@ -281,8 +281,7 @@ RtlDesign design_of(const Loaded& l, const Target& t) {
   if (!t.top.empty() && !t.user_rtl() && t.plugin.empty()) {
     throw Error("--top needs --rtl or -f (or --rtl-plugin, for a plugin built from them)");
   }
-  if (!t.plugin.empty() &&
-      (t.user_rtl() || !t.include_dirs.empty() || !t.defines.empty())) {
+  if (!t.plugin.empty() && (t.user_rtl() || !t.include_dirs.empty() || !t.defines.empty())) {
     throw Error("give --rtl (or -f, -I, -D) or --rtl-plugin, not both: a plugin records its RTL");
   }
   return rtl_design(*l.pipeline, l.cfg, t.checked_sources(), t.top);
@@ -329,12 +328,11 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
   if (!t.user_rtl()) {
     rtl.label = fmt::format("built-in {} ({}{})", design.top, key, x_init);
   } else {
-    rtl.label = fmt::format("{} from --rtl, {} file{}{} ({}{})", design.top, design.files.size(),
-                            design.files.size() == 1 ? "" : "s",
-                            design.defines.empty()
-                                ? ""
-                                : fmt::format(", {}", fmt::join(design.defines, " ")),
-                            key, x_init);
+    rtl.label = fmt::format(
+        "{} from --rtl, {} file{}{} ({}{})", design.top, design.files.size(),
+        design.files.size() == 1 ? "" : "s",
+        design.defines.empty() ? "" : fmt::format(", {}", fmt::join(design.defines, " ")), key,
+        x_init);
     rtl.options = t.rtl_options();
   }
   if (design.x_init == XInit::random) {
@@ -356,17 +354,17 @@ const std::string& invocation() { return invocation_text(); }
 CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus) {
   Rtl rtl = rtl_of(l, t);
   CosimSubject s{std::string(l.pipeline->name),
-                      l.cfg,
-                      *l.model,
-                      stimulus,
-                      l.pipeline->independent_vectors,
-                      std::move(rtl.make_dut),
-                      std::move(rtl.label),
-                      std::move(rtl.options),
-                      l.pipeline->contract(*l.model, l.cfg),
-                      invocation(),
-                      t.config.empty() ? "" : " --config " + shell_quoted(t.config),
-                      l.pipeline->stages};
+                 l.cfg,
+                 *l.model,
+                 stimulus,
+                 l.pipeline->independent_vectors,
+                 std::move(rtl.make_dut),
+                 std::move(rtl.label),
+                 std::move(rtl.options),
+                 l.pipeline->contract(*l.model, l.cfg),
+                 invocation(),
+                 t.config.empty() ? "" : " --config " + shell_quoted(t.config),
+                 l.pipeline->stages};
   s.traceable = t.simulator != "icarus";
   return s;
 }
@@ -524,10 +522,10 @@ std::string junit_xml(std::span<const CosimRun> runs) {
           xml_escaped(r.pipeline), xml_escaped(r.config_name), xml_escaped(r.options.source.str()),
           xml_escaped(r.options.sink.str()), r.options.seed, runs[i].seconds);
       if (!r.passed) {
-        x += fmt::format(
-            "      <failure type=\"{}\" message=\"{}\">{}</failure>\n", xml_escaped(r.failure_kind),
-            xml_escaped(r.failure_detail ? r.failure_detail->message : r.summary()),
-            xml_escaped(r.failure));
+        x += fmt::format("      <failure type=\"{}\" message=\"{}\">{}</failure>\n",
+                         xml_escaped(r.failure_kind),
+                         xml_escaped(r.failure_detail ? r.failure_detail->message : r.summary()),
+                         xml_escaped(r.failure));
       }
       x += fmt::format("      <system-out>{}</system-out>\n    </testcase>\n",
                        xml_escaped(r.summary()));

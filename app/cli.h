@@ -84,7 +84,9 @@ struct Target {
   // Only the options that name the user's sources: --rtl, -f, -F, -I, -D and --top.
   void add_source_options(CLI::App& cmd);
   // Whether the user gave RTL of their own (--rtl or a file list).
-  [[nodiscard]] bool user_rtl() const { return !rtl.empty() || !lists_cwd.empty() || !lists_here.empty(); }
+  [[nodiscard]] bool user_rtl() const {
+    return !rtl.empty() || !lists_cwd.empty() || !lists_here.empty();
+  }
   // The user's RTL as one set, in the order the options were given (files, lists read).
   [[nodiscard]] RtlSources sources() const;
   // The same; Error for include folders or defines without sources to go with them.

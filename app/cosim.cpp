@@ -16,6 +16,7 @@
 #include "base/temporaries.h"
 #include "sim/cosim/coverage.h"
 #include "sim/cosim/coverpoints.h"
+#include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/waveform.h"
 
 namespace phongsim::cli {
@@ -32,6 +33,7 @@ struct CosimCli {
   std::string json;
   std::string junit;
   std::string coverage;
+  std::string waivers;  // --waivers FILE: the user's waivers (with --coverage)
   bool no_toggle = false;
   CLI::Option* vectors_opt = nullptr;
   CLI::Option* index_opt = nullptr;
@@ -41,12 +43,66 @@ nlohmann::ordered_json to_json(const FieldValue& v) {
   return {{"field", v.name}, {"format", v.format}, {"raw", v.raw}, {"real", v.real}};
 }
 
-// The line points a waiver left out, each with its reason.
+// The line points a waiver left out, each with its reason and, for the user's, the waiver
+// ("waivers.txt:3"; null for a configuration's).
 nlohmann::ordered_json waived_json(const std::vector<WaivedPoint>& waived) {
   nlohmann::ordered_json a = nlohmann::ordered_json::array();
   for (const WaivedPoint& w : waived) {
-    a.push_back(
-        {{"file", w.file}, {"lines", w.lines}, {"instance", w.instance}, {"reason", w.reason}});
+    a.push_back({{"file", w.file},
+                 {"lines", w.lines},
+                 {"instance", w.instance},
+                 {"reason", w.reason},
+                 {"waiver", w.waiver.empty() ? nlohmann::ordered_json(nullptr)
+                                             : nlohmann::ordered_json(w.waiver)}});
+  }
+  return a;
+}
+
+// The coverage points and signals of the target's design (probe_design): one DUT of the
+// coverage plugin the runs will use, built now if it is not yet (as rtl_of would).
+DesignProbe probe_of(const Loaded& l, const Target& t) {
+  RtlDesign design = design_of(l, t);
+  if (t.x_init == "random") design.x_init = XInit::random;
+  design.coverage = true;
+  design.coverage_toggle = t.coverage_toggle;
+  RtlPlugin plugin;
+  DesignProbe p = probe_design([&](const std::string& prefix) {
+    return rtl_duts(design, *l.model, t.no_build ? RtlBuild::never : RtlBuild::if_missing, stderr,
+                    &plugin, static_cast<std::uint32_t>(t.x_init_seed()), prefix)();
+  });
+  p.moved = moved_sources(plugin, design);
+  p.points = relocated(p.points, p.moved);
+  return p;
+}
+
+// The report's lines on what the user's waivers left out: one per waiver, its points by file
+// and lines, and its reason.
+void print_user_waivers(std::FILE* text, const CoverageSummary& s) {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const WaivedPoint*>> by;
+  for (const WaivedPoint& w : s.waived) {
+    if (w.waiver.empty()) continue;
+    if (!by.contains(w.waiver)) order.push_back(w.waiver);
+    by[w.waiver].push_back(&w);
+  }
+  for (const std::string& origin : order) {
+    const auto& points = by[origin];
+    std::vector<std::string> where;
+    for (const WaivedPoint* p : points) {
+      std::string f = p->file.substr(p->file.rfind('/') + 1);
+      where.push_back(fmt::format("{}:{} in {}", f, p->lines, p->instance));
+    }
+    fmt::print(text, "waived by {} ({} line point{}: {}): {}\n", origin, points.size(),
+               points.size() == 1 ? "" : "s", fmt::join(where, ", "), points.front()->reason);
+  }
+}
+
+// The design's signals without toggle points; null when they were not checked (no toggle data).
+nlohmann::ordered_json not_toggled_json(const CoverageSummary& s) {
+  if (!s.signals_checked) return nullptr;
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (const UncountedSignal& u : s.not_toggled) {
+    a.push_back({{"signal", u.path}, {"bits", u.bits}, {"why", u.why}});
   }
   return a;
 }
@@ -170,6 +226,9 @@ int run(CosimCli& c) {
   if (c.no_toggle && c.coverage.empty()) {
     throw Error("--no-toggle-coverage goes with --coverage DIR");
   }
+  if (!c.waivers.empty() && c.coverage.empty()) {
+    throw Error("--waivers goes with --coverage DIR");
+  }
   if (!c.coverage.empty() && !c.target.plugin.empty()) {
     throw Error("--coverage builds a plugin of its own: not with --rtl-plugin");
   }
@@ -184,7 +243,8 @@ int run(CosimCli& c) {
   const WaveFormat wave = c.trace.empty() ? WaveFormat::fst : wave_format(c.trace);
   const std::vector<std::pair<std::string, std::filesystem::path>> outputs{
       {"--json", c.json}, {"--junit", c.junit}, {"--trace", c.trace}};
-  const std::vector<std::pair<std::string, std::filesystem::path>> inputs = c.target.inputs();
+  std::vector<std::pair<std::string, std::filesystem::path>> inputs = c.target.inputs();
+  if (!c.waivers.empty()) inputs.emplace_back("--waivers", c.waivers);
   check_outputs(outputs, inputs);
   if (!c.coverage.empty()) {  // a folder of outputs: nothing read or written elsewhere in it
     for (const auto& [name, path] : outputs) {
@@ -204,6 +264,8 @@ int run(CosimCli& c) {
     }
   }
   // Every configuration and its RTL first, so bad input stops the command before any run.
+  CoverageInputs coverage_inputs;
+  if (!c.waivers.empty()) coverage_inputs.user_waivers = read_waivers(c.waivers);
   std::vector<Loaded> loaded;
   std::vector<Target> targets;
   for (const auto& config : configs) {
@@ -212,12 +274,29 @@ int run(CosimCli& c) {
     loaded.push_back(load(t));
     targets.push_back(t);
   }
+  if (!c.coverage.empty()) {
+    // Each design's coverage points and signals before any run: a stale waiver stops the
+    // command here, and the signals Verilator counts no toggles of are listed after the runs.
+    std::map<std::string, std::uint64_t> declared;
+    for (std::size_t k = 0; k < loaded.size(); ++k) {
+      Target t = targets[k];
+      t.coverage_toggle = !c.no_toggle;
+      DesignProbe p = probe_of(loaded[k], t);
+      declared.merge(p.points);
+      coverage_inputs.moved.merge(p.moved);
+      if (!c.no_toggle) {
+        for (WaveSignal& s : p.signals) coverage_inputs.signals.push_back(std::move(s));
+      }
+    }
+    check_waivers(declared, coverage_inputs.user_waivers);
+  }
   JsonOutput json(c.json);
   if (!c.coverage.empty()) {
+    // One prefix per configuration: each plugin numbers its DUTs' files from 0.
     const std::string prefix = coverage_prefix(c.coverage);
-    for (Target& t : targets) {
-      t.coverage_prefix = prefix;
-      t.coverage_toggle = !c.no_toggle;
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      targets[k].coverage_prefix = fmt::format("{}{}-", prefix, k);
+      targets[k].coverage_toggle = !c.no_toggle;
     }
   }
   std::optional<OutputFile> trace_file;
@@ -243,7 +322,7 @@ int run(CosimCli& c) {
   // With --coverage: this command's functional coverpoints, every configuration's prefixed
   // "<pipeline>/<config>:", and the stall-pattern classes of its runs.
   Coverpoints points;
-  std::vector<LineWaiver> line_waivers;
+  std::vector<LineWaiver>& line_waivers = coverage_inputs.line_waivers;
   if (!c.coverage.empty()) declare_stall_classes(points);
   for (std::size_t k = 0; k < loaded.size(); ++k) {
     const Loaded& l = loaded[k];
@@ -301,19 +380,49 @@ int run(CosimCli& c) {
   for (const CosimRun& r : runs) failed += r.report.passed ? 0 : 1;
   std::optional<CoverageSummary> coverage;
   if (!c.coverage.empty()) {
-    coverage = merge_coverage(c.coverage, line_waivers);
+    coverage = merge_coverage(c.coverage, coverage_inputs);
     const std::filesystem::path dir = c.coverage;
+    const std::vector<UncountedSignal>& uncounted = coverage->not_toggled;
     const std::string toggles =
         !coverage->toggles_measured()
             ? "toggles not measured (--no-toggle-coverage)"
-            : fmt::format("toggles {:.1f} % ({} of {})", coverage->toggle_percent(),
-                          coverage->toggle_hit, coverage->toggle_points);
+            : fmt::format("toggles {:.1f} % ({} of {}{})", coverage->toggle_percent(),
+                          coverage->toggle_hit, coverage->toggle_points,
+                          uncounted.empty()
+                              ? ""
+                              : fmt::format("; {} bits of {} signal{} not toggle-counted",
+                                            coverage->not_toggled_bits(), uncounted.size(),
+                                            uncounted.size() == 1 ? "" : "s"));
     fmt::print(text,
-               "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points{}), {}; {}, {}\n",
+               "coverage ({} data file{} in {}): lines {:.1f} % ({} of {} points{}), {}; {}, {} "
+               "(its Branches row is the lines figure, Functions the toggles)\n",
                coverage->files, coverage->files == 1 ? "" : "s", (dir / "data").string(),
                coverage->line_percent(), coverage->line_hit, coverage->line_points,
                coverage->line_waived == 0 ? "" : fmt::format(", {} waived", coverage->line_waived),
                toggles, (dir / "coverage.info").string(), (dir / "html" / "index.html").string());
+    print_user_waivers(text, *coverage);
+    // The signals the toggle figures leave out, by why (in the order first met).
+    std::vector<std::string> whys;
+    std::map<std::string, std::vector<const UncountedSignal*>> by_why;
+    for (const UncountedSignal& u : uncounted) {
+      if (!by_why.contains(u.why)) whys.push_back(u.why);
+      by_why[u.why].push_back(&u);
+    }
+    for (const std::string& why : whys) {
+      constexpr std::size_t kShown = 6;
+      const auto& signals = by_why[why];
+      std::uint64_t bits = 0;
+      std::vector<std::string> shown;
+      for (const UncountedSignal* u : signals) {
+        bits += u->bits;
+        if (shown.size() < kShown) shown.push_back(fmt::format("{} ({})", u->path, u->bits));
+      }
+      fmt::print(text, "not toggle-counted, {} ({} signal{}, {} bits): {}{}\n", why, signals.size(),
+                 signals.size() == 1 ? "" : "s", bits, fmt::join(shown, ", "),
+                 signals.size() <= kShown
+                     ? ""
+                     : fmt::format(" and {} more (--json lists them)", signals.size() - kShown));
+    }
     // Earlier commands' counts in DIR first, so the file keeps their order.
     Coverpoints merged = Coverpoints::read(dir / "coverpoints.txt");
     merged.merge(points);
@@ -348,10 +457,13 @@ int run(CosimCli& c) {
             {"total", coverage->line_points},
             {"waived", coverage->line_waived},
             {"waivers", waived_json(coverage->waived)}}},
+          {"waiver_file",
+           c.waivers.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(c.waivers)},
           {"toggles", coverage->toggles_measured()
                           ? nlohmann::ordered_json(
                                 {{"hit", coverage->toggle_hit}, {"total", coverage->toggle_points}})
                           : nlohmann::ordered_json(nullptr)},
+          {"not_toggle_counted", not_toggled_json(*coverage)},
           {"coverpoints",
            {{"hit", points.hit_points()},
             {"total", points.size()},
@@ -424,6 +536,11 @@ void add_cosim(CLI::App& app, Action& action) {
                   "into DIR/data; every run's there so far is merged into DIR/coverage.info (lcov) "
                   "and DIR/html; functional coverpoints, counted on the model, into "
                   "DIR/coverpoints.txt (docs/verification.md)");
+  cmd->add_option("--waivers", c->waivers,
+                  "with --coverage: a waiver file, one a line: SOURCE[:LINE[-LAST]] [/REGEX/] "
+                  "[@INSTANCE] REASON; the line points it names leave the line figures, listed "
+                  "with the reason; a waiver that matches no point, or a waived point reached, is "
+                  "an error (docs/cosim.md)");
   cmd->add_flag("--no-toggle-coverage", c->no_toggle,
                 "with --coverage: line points only, no toggle points (a build several times "
                 "smaller and faster to compile and run; the JSON's toggle figures are null)");

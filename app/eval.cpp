@@ -31,8 +31,7 @@ int run_eval(const EvalCli& c) {
   DutFactory make_dut;
   if (c.backend == "rtl") {
     make_dut = rtl_of(l, c.target).make_dut;
-  } else if (c.target.user_rtl() || !c.target.plugin.empty() ||
-             c.target.simulator != "verilator") {
+  } else if (c.target.user_rtl() || !c.target.plugin.empty() || c.target.simulator != "verilator") {
     throw Error("--rtl, --rtl-plugin and --simulator need --backend rtl");
   } else if (c.target.x_init != "zero" || *c.target.x_seed_opt) {
     throw Error("--x-init and --x-seed need --backend rtl");
@@ -48,9 +47,10 @@ int run_eval(const EvalCli& c) {
   if (stages) stages->commit();
   const std::string x_init =
       c.target.x_init == "random" ? fmt::format(", x-init random, seed {}", c.target.x_seed) : "";
-  fmt::print(out.is_stdout() || json.to_stdout() || (stages && stages->is_stdout()) ? stderr : stdout,
-             "{} output rows from {} ({} backend{}, {}) -> {}; {} vectors: {}\n", r.rows, c.in,
-             c.backend, x_init, l.cfg.origin(), c.out, r.vectors, contract.summary(r.contract));
+  fmt::print(
+      out.is_stdout() || json.to_stdout() || (stages && stages->is_stdout()) ? stderr : stdout,
+      "{} output rows from {} ({} backend{}, {}) -> {}; {} vectors: {}\n", r.rows, c.in, c.backend,
+      x_init, l.cfg.origin(), c.out, r.vectors, contract.summary(r.contract));
   if (json.wanted()) {
     nlohmann::ordered_json j = json_document("eval");
     j["pipeline"] = l.pipeline->name;

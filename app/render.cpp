@@ -169,7 +169,8 @@ int run(RenderCli c) {
   } else {
     (void)c.rtl.checked_sources();  // -I or -D alone
     if (!c.rtl.pipeline.empty() || !c.rtl.top.empty()) {
-      throw Error("--pipeline and --top name your RTL's pipeline and top: give the RTL (--rtl or -f)");
+      throw Error(
+          "--pipeline and --top name your RTL's pipeline and top: give the RTL (--rtl or -f)");
     }
   }
   (void)parse_clock(c.clock);

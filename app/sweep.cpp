@@ -86,9 +86,8 @@ std::optional<SweepRtl> sweep_rtl(const SweepFiles& c) {
   for (const fs::path& f : sources.files) fs::is_directory(f) ? add_folder(f) : add_file(f);
   for (const fs::path& d : sources.include_dirs) add_folder(d);
   for (const std::string& d : sources.defines) id.add("define " + d);
-  const std::string identity =
-      fmt::format("{} from --rtl ({})", r.top.empty() ? "the built-in top" : r.top,
-                  id.hex().substr(0, 16));
+  const std::string identity = fmt::format(
+      "{} from --rtl ({})", r.top.empty() ? "the built-in top" : r.top, id.hex().substr(0, 16));
   const Target rtl = c.rtl;
   const std::uint64_t vectors = quick_cap(c.verify_vectors, kQuickVectors);
   r.verify = [rtl, vectors, identity](const fs::path& config) {

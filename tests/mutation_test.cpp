@@ -47,7 +47,8 @@ std::size_t Count(const std::string& text, std::string_view what) {
 // The first line of the failure report ("MISMATCH at cycle 123, vector 45 ...").
 std::string FirstFailure(const std::string& out) {
   static const std::regex first(
-      R"(^(MISMATCH|UNEXPECTED OUTPUT|DEADLOCK|HANDSHAKE VIOLATION|RTL ASSERTION)[^\n]*)", std::regex::multiline);
+      R"(^(MISMATCH|UNEXPECTED OUTPUT|DEADLOCK|HANDSHAKE VIOLATION|RTL ASSERTION)[^\n]*)",
+      std::regex::multiline);
   std::smatch m;
   return std::regex_search(out, m, first) ? m.str() : "";
 }

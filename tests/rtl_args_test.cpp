@@ -101,8 +101,9 @@ TEST(FileList, RefusesWhatItCannotRead) {
   EXPECT_NE(list("\"open.sv\n").find("an unterminated"), std::string::npos);
   EXPECT_NE(list("-I\n").find("-I needs a value"), std::string::npos);
   RtlSources s;
-  EXPECT_NE(error_of([&] { add_file_list(root / "nowhere.f", false, s); })
-                .find("cannot read the file list"),
+  EXPECT_NE(error_of([&] {
+              add_file_list(root / "nowhere.f", false, s);
+            }).find("cannot read the file list"),
             std::string::npos);
 }
 
@@ -132,9 +133,12 @@ TEST(PortableHint, NamesTheConstruct) {
         "  assign z = longint'(x);\n"
         "  assign w = x + 1;\n"
         "endmodule\n");
-  const auto at = [&](int line) { return fmt::format("{}:{}: ERROR: syntax error", f.string(), line); };
-  EXPECT_NE(portable_hint(at(2), "Yosys 0.23").find("has a function's return, which Yosys 0.23 "
-                                                    "does not read: instead, assign the result"),
+  const auto at = [&](int line) {
+    return fmt::format("{}:{}: ERROR: syntax error", f.string(), line);
+  };
+  EXPECT_NE(portable_hint(at(2), "Yosys 0.23")
+                .find("has a function's return, which Yosys 0.23 "
+                      "does not read: instead, assign the result"),
             std::string::npos);
   EXPECT_NE(portable_hint(at(3), "Yosys 0.23").find("a declaration with an initial value"),
             std::string::npos);

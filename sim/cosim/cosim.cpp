@@ -503,8 +503,8 @@ Phase run_phase(PipelineModel& model, RtlDut& dut, const Stimulus& stimulus,
   hooks.check = [&](std::span<const std::uint64_t> accepted, std::span<const std::int64_t> out,
                     std::span<const std::uint64_t> cycles) {
     if (tracing) {
-      note_handshakes(phase.notes, ho, first, model.outputs().size(), noted_inputs,
-                      noted_outputs, accepted, out, cycles);
+      note_handshakes(phase.notes, ho, first, model.outputs().size(), noted_inputs, noted_outputs,
+                      accepted, out, cycles);
     }
     if (progress) {
       done += accepted.size();
@@ -775,7 +775,8 @@ std::vector<StageValue> describe_vector(const CosimSubject& s, std::uint64_t see
   s.stimulus.vector(seed, index, in);
   if (contract.defined()) {
     const int c = contract.check(in);
-    d.contract = c == InputContract::kIn ? "inside" : contract.clauses()[static_cast<std::size_t>(c)];
+    d.contract =
+        c == InputContract::kIn ? "inside" : contract.clauses()[static_cast<std::size_t>(c)];
   }
   if (!s.stages) return {};
   std::vector<StageValue> values = s.stages(*model, in);
@@ -857,19 +858,18 @@ std::string failure_message(const CosimFailure& d, const std::string& harness) {
       if (first == nullptr) first = &f;
     }
     if (first != nullptr && first->expected && first->got) {
-      fields = fmt::format("{} is {} ({}) where the model gives {} ({})", first->name,
-                           first->got->raw, first->got->real, first->expected->raw,
-                           first->expected->real);
-      if (differ > 1) fields += fmt::format(", and {} more field{} differ", differ - 1,
-                                            differ == 2 ? "" : "s");
+      fields =
+          fmt::format("{} is {} ({}) where the model gives {} ({})", first->name, first->got->raw,
+                      first->got->real, first->expected->raw, first->expected->real);
+      if (differ > 1)
+        fields += fmt::format(", and {} more field{} differ", differ - 1, differ == 2 ? "" : "s");
     }
-    return fmt::format(
-        "mismatch at cycle {}, vector {} (output {} of {}): {}{}{}", d.cycle, *d.vector,
-        d.output.value_or(0) + 1, d.outputs_of_vector, fields,
-        d.first_differing_stage.empty()
-            ? ""
-            : fmt::format("; first stage to differ: {}", d.first_differing_stage),
-        d.contract.empty() ? "" : fmt::format("; input contract: {}", d.contract));
+    return fmt::format("mismatch at cycle {}, vector {} (output {} of {}): {}{}{}", d.cycle,
+                       *d.vector, d.output.value_or(0) + 1, d.outputs_of_vector, fields,
+                       d.first_differing_stage.empty()
+                           ? ""
+                           : fmt::format("; first stage to differ: {}", d.first_differing_stage),
+                       d.contract.empty() ? "" : fmt::format("; input contract: {}", d.contract));
   }
   if (d.kind == "unexpected output") {
     return fmt::format("unexpected output at cycle {}: no vector owes an output then", d.cycle);
@@ -1002,15 +1002,14 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
       }
       if (locate) locate_stages(ho.trace_path, stage_values, traced.notes, ho.trace_from, d);
       if (!options.trace_path.empty()) {
-        complete_notes(subject, options.seed, run.shard.first, traced.harness.inputs,
-                       traced.notes);
+        complete_notes(subject, options.seed, run.shard.first, traced.harness.inputs, traced.notes);
         annotate_waveform(options.trace_path, traced.notes);
       }
     }
     d.message = failure_message(d, main.harness.message);
-    r.failure = main.report + vector_text(d) +
-                failure_context(r, options.only_index, main.failing_index,
-                                subject.independent_vectors);
+    r.failure =
+        main.report + vector_text(d) +
+        failure_context(r, options.only_index, main.failing_index, subject.independent_vectors);
     if (!options.trace_path.empty()) {
       r.failure += fmt::format("  waveform of cycles {}..{}: {}\n", ho.trace_from, ho.trace_to,
                                options.trace_path);

@@ -15,10 +15,10 @@
 #include "model/config.h"
 #include "model/pipeline.h"
 #include "sim/cosim/contract.h"
-#include "sim/cosim/waveform.h"
 #include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/stall.h"
 #include "sim/cosim/stimulus.h"
+#include "sim/cosim/waveform.h"
 
 namespace phongsim {
 
@@ -64,9 +64,9 @@ struct FieldComparison {
 
 // The first failure as data — the same facts as the text report, for JSON (docs/json.md).
 struct CosimFailure {
-  std::string kind;  // "mismatch", "unexpected output", "deadlock", "protocol", "assertion",
-                    // "unknown value"
-  std::uint64_t cycle = 0;               // the cycle it was detected in
+  std::string kind;         // "mismatch", "unexpected output", "deadlock", "protocol", "assertion",
+                            // "unknown value"
+  std::uint64_t cycle = 0;  // the cycle it was detected in
   std::optional<std::uint64_t> vector;   // mismatch: the vector owning the output; deadlock,
                                          // protocol: the vector owing the next output
   std::optional<std::uint64_t> output;   // mismatch: which of that vector's outputs (0-based)
@@ -84,8 +84,8 @@ struct CosimFailure {
   std::vector<StageSighting> sightings;
   std::string first_differing_stage;
   std::string contract;
-  std::string message;  // one line: what failed, where (also the harness's words)
-  bool in_measurement_run = false;       // found by the stall-free measurement run
+  std::string message;              // one line: what failed, where (also the harness's words)
+  bool in_measurement_run = false;  // found by the stall-free measurement run
 };
 
 struct CosimReport {

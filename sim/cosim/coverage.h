@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/cosim/rtl_dut.h"
+#include "sim/cosim/rtl_plugin.h"
 #include "sim/cosim/waveform.h"
 
 namespace phongsim {
@@ -108,18 +108,45 @@ struct CoverageSummary {
 struct CoverageInputs {
   std::vector<LineWaiver> line_waivers;  // the configurations' (CoverpointSampler::line_waivers)
   std::vector<UserWaiver> user_waivers;  // cosim --waivers
-  // The design's signals (design_signals(), of every configuration run); empty: not checked.
+  // The design's signals (probe_design(), of every configuration run); empty: not checked.
   std::vector<WaveSignal> signals;
+  // Source paths the points name that are elsewhere now (moved_sources()): the points are
+  // counted, matched and reported at the new paths.
+  std::map<std::string, std::string> moved;
 };
 
 // The prefix a run's DUTs write their files under (RtlLibrary::create): DIR/data/<time>-<pid>-,
 // unique per phongsim process. Creates DIR/data.
 [[nodiscard]] std::string coverage_prefix(const std::filesystem::path& dir);
 
-// The signals of a DUT's design as its waveform (FST) declares them: a trace of its reset
-// written to a temporary file and read back. Make the DUT without a coverage prefix: it is not
-// a run, its counts are not wanted.
-[[nodiscard]] std::vector<WaveSignal> design_signals(RtlDut& dut);
+// What a coverage plugin's design declares, learnt before any run from one DUT of it: its
+// coverage points (with the counts of a reset) and the signals of its waveform (FST).
+struct DesignProbe {
+  std::map<std::string, std::uint64_t> points;
+  std::vector<WaveSignal> signals;
+  std::map<std::string, std::string> moved;  // moved_sources(), for the caller to fill
+};
+// `make(prefix)` makes a DUT of the coverage plugin writing its counts under `prefix`
+// (rtl_duts); the probe's go to a temporary folder, never into a coverage DIR.
+[[nodiscard]] DesignProbe probe_design(const std::function<DutPtr(const std::string&)>& make);
+
+// The paths of a plugin's sources as Verilator named them in its coverage points, when the
+// design has them elsewhere now, to where: a plugin is keyed by content, so a copy of the same
+// files in another folder (another checkout, a CI workspace) runs the plugin built from the
+// first, whose points name the first's paths (which may be gone). Each source the plugin
+// records (its files and includes) whose content the design now has at another path.
+[[nodiscard]] std::map<std::string, std::string> moved_sources(const RtlPlugin& plugin,
+                                                               const RtlDesign& design);
+// `points` with their source paths (f) moved (old path -> new path).
+[[nodiscard]] std::map<std::string, std::uint64_t> relocated(
+    const std::map<std::string, std::uint64_t>& points,
+    const std::map<std::string, std::string>& moved);
+
+// Error, as count_coverage_points gives it, for the first of the user's waivers that matches no
+// line or branch point of `points` (a design's, probe_design): a stale waiver stops a command
+// before its runs.
+void check_waivers(const std::map<std::string, std::uint64_t>& points,
+                   std::span<const UserWaiver> waivers);
 
 // Counts points (Verilator coverage keys, "\x01name\x02value..." with page, f, l, S, h, o, and
 // their counts summed over files) into a summary, files 0: merge_coverage()'s counting. Error

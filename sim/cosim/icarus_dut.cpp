@@ -291,9 +291,10 @@ DutFactory icarus_duts(const RtlDesign& design, const PipelineModel& model, std:
         errors += (errors.empty() ? "" : "\n") + line;
       }
     }
-    throw Error(r.exit_code == -1 ? std::string("icarus: iverilog not found (Debian: iverilog)")
-                                  : fmt::format("iverilog failed for {}:\n{}{}", design.name,
-                                                errors, portable_hint(errors, "Icarus Verilog 11")));
+    throw Error(r.exit_code == -1
+                    ? std::string("icarus: iverilog not found (Debian: iverilog)")
+                    : fmt::format("iverilog failed for {}:\n{}{}", design.name, errors,
+                                  portable_hint(errors, "Icarus Verilog 11")));
   }
   const std::size_t n_in = model.inputs().size(), n_out = model.outputs().size();
   std::shared_ptr<const IcarusBuild> shared = build;

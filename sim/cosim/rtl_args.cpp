@@ -160,8 +160,7 @@ void add_words(std::span<const std::string> words, const Origin& o, RtlSources& 
 
 }  // namespace
 
-void add_rtl_words(std::span<const std::string> words, RtlSources& into,
-                   const std::string& where) {
+void add_rtl_words(std::span<const std::string> words, RtlSources& into, const std::string& where) {
   add_words(words, Origin{where, {}, {}}, into);
 }
 

@@ -52,7 +52,6 @@ std::vector<std::string> verilator_flags(const RtlDesign& d) {
   return flags;
 }
 
-
 // The first line a tool prints for --version, once per process.
 std::string tool_version(const std::string& program) {
   static std::mutex mutex;

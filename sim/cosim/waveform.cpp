@@ -41,6 +41,37 @@ void fst_to_vcd(const std::filesystem::path& fst, std::FILE* vcd) {
   fstReaderClose(ctx);
 }
 
+std::vector<WaveSignal> waveform_signals(const std::filesystem::path& fst) {
+  void* in = fstReaderOpen(fst.c_str());
+  if (in == nullptr) throw Error(fmt::format("cannot read the waveform {}", fst.string()));
+  // fstapi's names of its variable types (as fst2vcd writes them), FST_VT_VCD_EVENT on.
+  static const char* const kTypes[] = {
+      "event",   "integer",  "parameter", "real",   "real_parameter", "reg",     "supply0",
+      "supply1", "time",     "tri",       "triand", "trior",          "trireg",  "tri0",
+      "tri1",    "wand",     "wire",      "wor",    "port",           "sparray", "realtime",
+      "string",  "bit",      "logic",     "int",    "shortint",       "longint", "byte",
+      "enum",    "shortreal"};
+  std::vector<WaveSignal> out;
+  std::vector<std::string> scope;
+  while (const fstHier* h = fstReaderIterateHier(in)) {
+    if (h->htyp == FST_HT_SCOPE) {
+      scope.emplace_back(h->u.scope.name);
+    } else if (h->htyp == FST_HT_UPSCOPE && !scope.empty()) {
+      scope.pop_back();
+    } else if (h->htyp == FST_HT_VAR) {
+      std::string path;
+      for (const std::string& sc : scope) path += (path.empty() ? "" : ".") + sc;
+      const std::string name = h->u.var.name;
+      const unsigned t = h->u.var.typ;
+      out.push_back({path, name.substr(0, name.find(' ')), h->u.var.length,
+                     t < std::size(kTypes) ? kTypes[t] : fmt::format("type {}", t),
+                     h->u.var.direction != FST_VD_IMPLICIT});
+    }
+  }
+  fstReaderClose(in);
+  return out;
+}
+
 namespace {
 
 // The annotation's values, time by time (a later set at the same time replaces an earlier one),
@@ -101,8 +132,8 @@ struct Sightings {
   std::uint64_t from = 0, to = 0;
   struct Watch {
     std::size_t stage = 0;
-    std::size_t signal = 0;  // which of the stage's signals
-    std::string want;         // the stage's bits
+    std::size_t signal = 0;    // which of the stage's signals
+    std::string want;          // the stage's bits
     std::uint32_t lowest = 0;  // where they are in the signal (from its least significant bit)
   };
   std::unordered_map<fstHandle, std::vector<Watch>> watch;
@@ -156,8 +187,9 @@ std::optional<std::uint32_t> named_after(const std::string& signal, std::uint32_
   const std::string name = lower(stage);
   if (is_named(name) && length >= width) return 0;
   const std::size_t n = name.size();
-  if (n > 2 && name[n - 2] == '_' && (name[n - 1] == 'x' || name[n - 1] == 'y' || name[n - 1] == 'z') &&
-      length == 3 * width && is_named(name.substr(0, n - 2))) {
+  if (n > 2 && name[n - 2] == '_' &&
+      (name[n - 1] == 'x' || name[n - 1] == 'y' || name[n - 1] == 'z') && length == 3 * width &&
+      is_named(name.substr(0, n - 2))) {
     return static_cast<std::uint32_t>(name[n - 1] - 'x') * width;
   }
   return std::nullopt;
@@ -192,7 +224,8 @@ std::vector<StageSighting> find_stages(const std::filesystem::path& fst,
         for (const std::string& sc : scope) path += sc + ".";
         out[i].signals.push_back({path + name.substr(0, name.find(' ')), false});
         s.watch[h->u.var.handle].push_back(
-            {i, out[i].signals.size() - 1, bits(static_cast<std::uint64_t>(stages[i].value.raw), width), *lowest});
+            {i, out[i].signals.size() - 1,
+             bits(static_cast<std::uint64_t>(stages[i].value.raw), width), *lowest});
       }
     }
   }
@@ -241,8 +274,8 @@ void annotate_waveform(const std::filesystem::path& fst, const WaveNotes& notes)
       }
       case FST_HT_ATTRBEGIN:
         // Source stems overload the name with a number; a viewer does without them.
-        if (h->u.attr.typ == FST_AT_MISC && (h->u.attr.subtype == FST_MT_SOURCESTEM ||
-                                             h->u.attr.subtype == FST_MT_SOURCEISTEM)) {
+        if (h->u.attr.typ == FST_AT_MISC &&
+            (h->u.attr.subtype == FST_MT_SOURCESTEM || h->u.attr.subtype == FST_MT_SOURCEISTEM)) {
           break;
         }
         fstWriterSetAttrBegin(out, static_cast<fstAttrType>(h->u.attr.typ), h->u.attr.subtype,

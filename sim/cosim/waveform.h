@@ -22,6 +22,21 @@ enum class WaveFormat { fst, vcd };
 // Writes the FST file `fst` to `vcd` as a Value Change Dump. Error when it cannot be read.
 void fst_to_vcd(const std::filesystem::path& fst, std::FILE* vcd);
 
+// A variable a waveform declares: its scope ("top.my_lirp.g_component[0]"), its name without
+// the bit range ("m0_q"; an unpacked array's element "arr_q[2]"), its bits and its type as a VCD
+// names it ("logic", "wire", "int", "real", "parameter", ...), and whether it is a port of its
+// scope (a module's).
+struct WaveSignal {
+  std::string scope;
+  std::string name;
+  std::uint32_t bits = 0;
+  std::string type;
+  bool port = false;
+};
+
+// Every variable the FST `fst` declares, in its order. Error when it cannot be read.
+[[nodiscard]] std::vector<WaveSignal> waveform_signals(const std::filesystem::path& fst);
+
 // What the harness saw in the cycles a waveform covers: the inputs it handed over and the
 // outputs it took, each output with the model's expected fields.
 struct WaveNotes {
@@ -58,7 +73,7 @@ struct StageSighting {
     bool held = false;
   };
   std::string stage;
-  std::vector<Signal> signals;  // empty: the design has no signal of its name
+  std::vector<Signal> signals;         // empty: the design has no signal of its name
   [[nodiscard]] bool missed() const {  // a signal of its name never held the model's value
     for (const Signal& s : signals) {
       if (!s.held) return true;

@@ -508,8 +508,9 @@ std::vector<PointResult> merge_sweep(const SweepSpec& spec, const fs::path& out)
     if (r.rtl != results.front().rtl) {
       throw Error(fmt::format(
           "point {} was evaluated with {}, point {} with {}: run the sweep again with one design",
-          results.front().index, results.front().rtl.empty() ? "phongsim's RTL" : results.front().rtl,
-          r.index, r.rtl.empty() ? "phongsim's RTL" : r.rtl));
+          results.front().index,
+          results.front().rtl.empty() ? "phongsim's RTL" : results.front().rtl, r.index,
+          r.rtl.empty() ? "phongsim's RTL" : r.rtl));
     }
   }
   const bool user_rtl = !results.empty() && !results.front().rtl.empty();

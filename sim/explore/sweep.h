@@ -82,9 +82,9 @@ struct PointResult {
   int latency = 0;  // the built-in unit's, or the user's RTL's as measured
   double seconds = 0;
   // With the user's RTL (SweepRtl): which design, and its co-simulation at this point.
-  std::string rtl;                  // SweepRtl::Verdict::rtl; "" for phongsim's
-  std::optional<bool> verified;     // passed or not; none without the user's RTL
-  std::string verification;         // the co-simulation's summary line
+  std::string rtl;               // SweepRtl::Verdict::rtl; "" for phongsim's
+  std::optional<bool> verified;  // passed or not; none without the user's RTL
+  std::string verification;      // the co-simulation's summary line
 };
 
 // The user's RTL in a sweep (docs/exploration.md, "Your RTL in a sweep"): every point

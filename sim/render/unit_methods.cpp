@@ -33,8 +33,8 @@ Unit::Unit(const std::filesystem::path& config, Backend backend, bool no_build,
     const RtlDesign design =
         rtl != nullptr ? rtl_design(pipeline, cfg_, *rtl, top) : rtl_design(pipeline, cfg_);
     if (rtl != nullptr) rtl_name_ = fmt::format("your RTL ({}) with {}", design.top, cfg_.origin());
-    const RtlPlugin plugin = locate_rtl(design, *model_,
-                                        no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
+    const RtlPlugin plugin =
+        locate_rtl(design, *model_, no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);
     library_ = RtlLibrary::open(plugin);
   }
 }
@@ -66,9 +66,9 @@ std::vector<std::int64_t> Unit::run(const std::vector<std::int64_t>& vectors,
         if (++outputs % 4096 == 0) progress(what, outputs, 0);
       });
   if (r.reason != StopReason::finished || r.inputs != count) {
-    const std::string problem = fmt::format(
-        "{}: {} stopped: {}", what, rtl_name_,
-        r.message.empty() ? "not every input was accepted" : r.message);
+    const std::string problem =
+        fmt::format("{}: {} stopped: {}", what, rtl_name_,
+                    r.message.empty() ? "not every input was accepted" : r.message);
     if (user_rtl_) throw DesignFailure(problem);
     throw Error(problem);
   }
@@ -84,9 +84,10 @@ std::vector<std::int64_t> Unit::run(const std::vector<std::int64_t>& vectors,
   if (rtl != out) {  // the frame is a co-simulation too
     std::size_t i = 0;
     while (i < rtl.size() && i < out.size() && rtl[i] == out[i]) ++i;
-    throw DesignFailure(fmt::format("{}: {} differs from its model at output {} of {} (phongsim cosim "
-                            "gives the first mismatch with its stages)",
-                            what, rtl_name_, i / n_out, out.size() / n_out));
+    throw DesignFailure(
+        fmt::format("{}: {} differs from its model at output {} of {} (phongsim cosim "
+                    "gives the first mismatch with its stages)",
+                    what, rtl_name_, i / n_out, out.size() / n_out));
   }
   return rtl;
 }
