@@ -13,7 +13,9 @@
 #include "base/temporaries.h"
 
 // GTKWave's FST implementation, compiled here as Verilator compiles it into its runtime
-// (verilated_fst_c.cpp): the reader part is what this file uses.
+// (verilated_fst_c.cpp), under names of its own (a Verilated testbench linking this library has
+// Verilator's copy too).
+#include "sim/cosim/fst_private_names.h"
 #define FST_CONFIG_INCLUDE "fst_config.h"
 #include "gtkwave/fastlz.c"  // NOLINT
 #include "gtkwave/fstapi.c"  // NOLINT
