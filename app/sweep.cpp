@@ -72,7 +72,7 @@ std::optional<SweepRtl> sweep_rtl(const SweepFiles& c) {
   // the content of its files, include folders' too, whatever the point's parameters.
   ContentHash id;
   const auto add_file = [&](const fs::path& f) { id.add(f.filename().string() + file_hash(f)); };
-  const auto add_folder = [&](const fs::path& d) {
+  const auto add_folder = [&](const fs::path& d) {  // an include folder: its headers too
     std::vector<fs::path> in;
     for (const auto& e : fs::directory_iterator(d)) {
       const std::string ext = e.path().extension().string();
@@ -83,7 +83,7 @@ std::optional<SweepRtl> sweep_rtl(const SweepFiles& c) {
     std::sort(in.begin(), in.end());
     for (const fs::path& f : in) add_file(f);
   };
-  for (const fs::path& f : sources.files) fs::is_directory(f) ? add_folder(f) : add_file(f);
+  for (const fs::path& f : rtl_files(sources.files)) add_file(f);
   for (const fs::path& d : sources.include_dirs) add_folder(d);
   for (const std::string& d : sources.defines) id.add("define " + d);
   const std::string identity = fmt::format(
