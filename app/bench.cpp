@@ -269,7 +269,8 @@ void add_bench(CLI::App& app, Action& action) {
       cmd->add_option("--jobs", c->jobs,
                       "a pipeline's benchmark: also time the co-simulation with this many workers "
                       "(cosim --jobs)")
-          ->check(CLI::Range(1U, 256U))
+          ->check(CLI::Range(1U, 256U).description(""))
+          ->type_name("1..256")
           ->capture_default_str();
   c->no_icarus_opt = cmd->add_flag(
       "--no-icarus", c->no_icarus,

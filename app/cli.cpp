@@ -10,9 +10,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <regex>
+#include <set>
 
 #include "base/error.h"
+#include "base/file_util.h"
 #include "base/paths.h"
 #include "base/process.h"
 #include "base/text.h"
@@ -37,8 +40,12 @@ CLI::Option* add_count(CLI::App& cmd, const std::string& name, std::uint64_t& va
         }
         return "";
       },
-      fmt::format("{}..{}", min, max));
-  return cmd.add_option(name, value, description)->check(check)->capture_default_str();
+      "");
+  // --help: N for a count without a limit that matters, else its range.
+  return cmd.add_option(name, value, description)
+      ->check(check)
+      ->type_name(max >= 0x7fffffff ? std::string("N") : fmt::format("{}..{}", min, max))
+      ->capture_default_str();
 }
 
 CLI::Option* add_int(CLI::App& cmd, const std::string& name, int& value,
@@ -55,8 +62,10 @@ CLI::Option* add_int(CLI::App& cmd, const std::string& name, int& value,
         }
         return "";
       },
-      fmt::format("{}..{}", lo, hi));
-  return cmd.add_option(name, value, description)->check(check);
+      "");
+  return cmd.add_option(name, value, description)
+      ->check(check)
+      ->type_name(fmt::format("{}..{}", lo, hi));
 }
 
 CLI::Option* add_real(CLI::App& cmd, const std::string& name, double& value,
@@ -72,8 +81,103 @@ CLI::Option* add_real(CLI::App& cmd, const std::string& name, double& value,
         if (x < lo || x > hi) return fmt::format("{} is out of range ({}..{})", text, lo, hi);
         return "";
       },
-      fmt::format("{}..{}", lo, hi));
-  return cmd.add_option(name, value, description)->check(check);
+      "");
+  return cmd.add_option(name, value, description)
+      ->check(check)
+      ->type_name(fmt::format("{:g}..{:g}", lo, hi));
+}
+
+CLI::Option* add_choice(CLI::App& cmd, const std::string& name, std::string& value,
+                        const std::string& description, const std::vector<std::string>& choices) {
+  std::string names;
+  for (const std::string& c : choices) names += (names.empty() ? "" : "|") + c;
+  return cmd.add_option(name, value, description)
+      ->check(CLI::IsMember(choices).description(""))
+      ->type_name(names)
+      ->capture_default_str();
+}
+
+namespace {
+
+// --help in plain words: CLI11's layout, an option's kind as its type name says it (NAME, FILE,
+// N, a range, a|b|c) with no validator text after it, flags without their "{false}", and a
+// default as "(default X)" after the description, unless the description already says what the
+// default is.
+class PlainHelp : public CLI::Formatter {
+ public:
+  std::string make_option_name(const CLI::Option* opt, bool positional) const override {
+    if (positional || (opt->get_snames().empty() && opt->get_lnames().empty())) {
+      return CLI::Formatter::make_option_name(opt, positional);
+    }
+    std::string names;
+    for (const std::string& n : opt->get_snames()) names += (names.empty() ? "-" : ",-") + n;
+    for (const std::string& n : opt->get_lnames()) names += (names.empty() ? "--" : ",--") + n;
+    return names;
+  }
+
+  std::string make_option_opts(const CLI::Option* opt) const override {
+    if (!opt->get_option_text().empty()) return " " + opt->get_option_text();
+    std::string out;
+    if (opt->get_type_size() != 0) {
+      if (!opt->get_type_name().empty()) out += " " + opt->get_type_name();
+      if (opt->get_expected_max() == CLI::detail::expected_max_vector_size) {
+        out += " ...";
+      } else if (opt->get_expected_min() > 1) {
+        out += fmt::format(" x {}", opt->get_expected());
+      }
+      if (opt->get_required()) out += " REQUIRED";
+    }
+    const auto list = [&out](const char* label, const std::set<CLI::Option*>& others) {
+      if (others.empty()) return;
+      out += fmt::format(" ({}", label);
+      for (const CLI::Option* o : others) out += " " + o->get_name();
+      out += ")";
+    };
+    list("needs", opt->get_needs());
+    list("excludes", opt->get_excludes());
+    return out;
+  }
+
+  std::string make_option_desc(const CLI::Option* opt) const override {
+    const std::string& desc = opt->get_description();
+    std::string value = opt->get_default_str();
+    if (opt->get_type_size() == 0 || value.empty() || opt->get_required() ||
+        desc.find("default") != std::string::npos) {
+      return desc;
+    }
+    if (value.size() >= 2 && value.front() == '[' && value.back() == ']') {  // a list
+      value = value.substr(1, value.size() - 2);
+    }
+    return fmt::format("{} (default {})", desc, value);
+  }
+};
+
+void add_progress_option(CLI::App& cmd) {
+  cmd.add_option_function<std::string>(
+         "--progress",
+         [](const std::string& mode) {
+           set_progress_mode(mode == "never"    ? ProgressMode::never
+                             : mode == "always" ? ProgressMode::always
+                                                : ProgressMode::automatic);
+         },
+         "progress on standard error: auto (the default: on a terminal a line updating in "
+         "place, else a plain line after 10 s and at most every 20 s), always (the updating "
+         "line) or never; docs/cosim.md")
+      ->check(CLI::IsMember({"auto", "always", "never"}).description(""))
+      ->type_name("auto|always|never");
+}
+
+void add_common_options(CLI::App& cmd, const std::shared_ptr<PlainHelp>& help, bool top) {
+  cmd.formatter(help);
+  const std::vector<CLI::App*> subs = cmd.get_subcommands([](CLI::App*) { return true; });
+  if (subs.empty() && !top) add_progress_option(cmd);  // a command that runs
+  for (CLI::App* sub : subs) add_common_options(*sub, help, false);
+}
+
+}  // namespace
+
+void add_common_options(CLI::App& app) {
+  add_common_options(app, std::make_shared<PlainHelp>(), true);
 }
 
 bool quick_mode() {
@@ -95,14 +199,17 @@ std::uint64_t quick_cap(std::uint64_t value, std::uint64_t cap) {
 
 void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
   cmd.add_option("pipeline,--pipeline", pipeline,
-                 "pipeline name (default: the configuration's `pipeline` key)");
+                 "pipeline name (default: the configuration's `pipeline` key)")
+      ->type_name("NAME");
   if (many_configs) {
     cmd.add_option("--config", configs,
                    "configuration file, or several (--config a.toml --config b.toml: one run each; "
-                   "default: configs/<pipeline>/default.toml)");
+                   "default: configs/<pipeline>/default.toml)")
+        ->type_name("FILE");
   } else {
     cmd.add_option("--config", config,
-                   "configuration file (default: configs/<pipeline>/default.toml)");
+                   "configuration file (default: configs/<pipeline>/default.toml)")
+        ->type_name("FILE");
   }
   if (!rtl_options) return;
   cmd.add_flag("--no-build", no_build,
@@ -110,7 +217,8 @@ void Target::add_options(CLI::App& cmd, bool rtl_options, bool many_configs) {
   add_source_options(cmd);
   cmd.add_option("--rtl-plugin", plugin,
                  "a plugin file phongsim built before (phongsim build-rtl prints its path); "
-                 "refused if any source it was built from has changed since");
+                 "refused if any source it was built from has changed since")
+      ->type_name("FILE");
 }
 
 void Target::add_source_options(CLI::App& cmd) {
@@ -120,30 +228,33 @@ void Target::add_source_options(CLI::App& cmd) {
                  "(docs/your-rtl.md): SystemVerilog files and folders (a folder gives its .sv and "
                  ".v files; files that declare packages go first), headers (.svh, .vh: their "
                  "folder is an include folder), +incdir+DIR and +define+NAME[=VALUE]")
-      ->expected(1, -1);
+      ->expected(1, -1)
+      ->type_name("PATH");
   cmd.add_option("-f", lists_cwd,
                  "a file list of your RTL, its relative paths from the current folder (files, "
-                 "+incdir+, +define+, -I, -D, nested -f/-F; // and # comments, $VAR)");
-  cmd.add_option("-F", lists_here, "a file list whose relative paths are from its own folder");
+                 "+incdir+, +define+, -I, -D, nested -f/-F; // and # comments, $VAR)")
+      ->type_name("FILE");
+  cmd.add_option("-F", lists_here, "a file list whose relative paths are from its own folder")
+      ->type_name("FILE");
   cmd.add_option("-I", include_dirs,
-                 "an include folder of your RTL (searched before the folders of its files)");
-  cmd.add_option("-D", defines, "a macro of your RTL: NAME or NAME=VALUE");
-  cmd.add_option("--top", top,
-                 "top module of --rtl or --rtl-plugin (default: the built-in top's name)");
+                 "an include folder of your RTL (searched before the folders of its files)")
+      ->type_name("DIR");
+  cmd.add_option("-D", defines, "a macro of your RTL: NAME or NAME=VALUE")
+      ->type_name("NAME[=VALUE]");
+  cmd.add_option("--top", top, "top module of your RTL (default: the built-in top's name)")
+      ->type_name("MODULE");
 }
 
 void Target::add_simulator_option(CLI::App& cmd) {
-  cmd.add_option("--simulator", simulator,
-                 "verilator (the plugin), or icarus: the same design compiled by Icarus Verilog "
-                 "(four-state: X or Z on an output is a failure; docs/cosim.md)")
-      ->check(CLI::IsMember({"verilator", "icarus"}))
-      ->capture_default_str();
-  cmd.add_option("--x-init", x_init,
-                 "how the Verilated registers start: zero, or random (a plugin built with "
-                 "-x-assign unique -x-initial unique whose power-up state and X assignments "
-                 "come from --x-seed; docs/verification.md)")
-      ->check(CLI::IsMember({"zero", "random"}))
-      ->capture_default_str();
+  add_choice(cmd, "--simulator", simulator,
+             "verilator (the plugin), or icarus: the same design compiled by Icarus Verilog "
+             "(four-state: X or Z on an output is a failure; docs/cosim.md)",
+             {"verilator", "icarus"});
+  add_choice(cmd, "--x-init", x_init,
+             "how the Verilated registers start: zero, or random (a plugin built with "
+             "-x-assign unique -x-initial unique whose power-up state and X assignments "
+             "come from --x-seed; docs/verification.md)",
+             {"zero", "random"});
   x_seed_opt = add_count(cmd, "--x-seed", x_seed, "seed of the power-up state (--x-init random)",
                          0x7fffffff, 1);
 }
@@ -166,6 +277,17 @@ void Target::check_x_init() const {
 std::vector<std::pair<std::string, fs::path>> Target::inputs() const {
   std::vector<std::pair<std::string, fs::path>> in{{"--config", config}, {"--rtl-plugin", plugin}};
   for (const std::string& c : configs) in.emplace_back("--config", c);
+  std::error_code ec;
+  if (config.empty() && configs.empty() && !pipeline.empty()) {
+    in.emplace_back("the default configuration",
+                    data_root() / "configs" / pipeline / "default.toml");
+  }
+  if (!user_rtl() && plugin.empty()) {  // phongsim's own RTL
+    for (fs::recursive_directory_iterator it(data_root() / "rtl", ec), end; !ec && it != end;
+         it.increment(ec)) {
+      if (it->is_regular_file(ec)) in.emplace_back("phongsim's RTL", it->path());
+    }
+  }
   const auto hdl = [](const fs::path& f) {
     static const std::vector<std::string> kinds = {".sv", ".v", ".svh", ".vh", ".svi", ".inc"};
     return std::find(kinds.begin(), kinds.end(), f.extension().string()) != kinds.end();
@@ -177,7 +299,6 @@ std::vector<std::pair<std::string, fs::path>> Target::inputs() const {
   } catch (const Error&) {
     for (const std::string& p : rtl) s.files.emplace_back(p);
   }
-  std::error_code ec;
   for (const fs::path& list : s.lists) in.emplace_back("-f", list);
   for (const fs::path& dir : s.include_dirs) {  // what an `include may read there
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
@@ -294,8 +415,19 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
   design.coverage = !t.coverage_prefix.empty();
   design.coverage_toggle = t.coverage_toggle;
   Rtl rtl;
+  rtl.identity = {design.top,
+                  !t.plugin.empty() ? "plugin"
+                  : t.user_rtl()    ? "rtl"
+                                    : "builtin",
+                  t.simulator == "icarus" ? "icarus" : "verilator",
+                  t.plugin,
+                  {},
+                  design.include_dirs,
+                  design.defines,
+                  design.params};
   if (!t.plugin.empty()) {
     const auto library = RtlLibrary::open_file(t.plugin, design);
+    rtl.identity.sources = library->sources();
     const PipelineModel* model = l.model.get();
     rtl.make_dut = [library, model]() { return library->create(*model); };
     // It runs as it was built: its Verilator flags are the ones it records.
@@ -310,6 +442,7 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
     if (!t.plugin.empty())
       throw Error("--rtl-plugin is a Verilator build: not with --simulator icarus");
     rtl.make_dut = icarus_duts(design, *l.model, stderr);
+    for (const auto& f : design.files) rtl.identity.sources.files.push_back({f, file_hash(f)});
     rtl.label = !t.user_rtl() ? fmt::format("built-in {} in Icarus Verilog", design.top)
                               : fmt::format("{} from --rtl in Icarus Verilog", design.top);
     rtl.options = " --simulator icarus" + t.rtl_options();
@@ -324,6 +457,8 @@ Rtl rtl_of(const Loaded& l, const Target& t) {
                   : design.coverage_toggle ? "; coverage"
                                            : "; line coverage") +
       (design.x_init == XInit::random ? fmt::format("; x-init random, seed {}", t.x_seed) : "");
+  rtl.identity.plugin = plugin.path;
+  rtl.identity.sources = plugin_sources(plugin, design);
   const std::string key = plugin.key.substr(0, 16);  // as the cache folder names it
   if (!t.user_rtl()) {
     rtl.label = fmt::format("built-in {} ({}{})", design.top, key, x_init);
@@ -351,8 +486,10 @@ std::string& invocation_text() {
 void set_invocation(std::string_view argv0) { invocation_text() = shell_quoted(argv0); }
 const std::string& invocation() { return invocation_text(); }
 
-CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus) {
+CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus,
+                        RtlIdentity* identity) {
   Rtl rtl = rtl_of(l, t);
+  if (identity != nullptr) *identity = rtl.identity;
   CosimSubject s{std::string(l.pipeline->name),
                  l.cfg,
                  *l.model,
@@ -378,48 +515,104 @@ std::optional<fs::path> inside(const fs::path& path, const fs::path& dir) {
   return rel;
 }
 
-bool progress_shown() { return isatty(STDERR_FILENO) != 0; }
+namespace {
 
-// Seconds a task runs before its progress line appears: PHONGSIM_PROGRESS_AFTER, else 2 (short
-// runs stay quiet). An unusable value is refused once, naming it.
-double progress_after() {
-  static const double after = [] {
-    const char* v = std::getenv("PHONGSIM_PROGRESS_AFTER");
-    if (v == nullptr) return 2.0;
-    char* end = nullptr;
-    const double x = std::strtod(v, &end);
-    if (end == v || *end != '\0' || !(x >= 0 && x <= 86400)) {
-      throw Error(
-          fmt::format("PHONGSIM_PROGRESS_AFTER='{}' is not a number of seconds (0..86400)", v));
-    }
-    return x;
-  }();
-  return after;
+ProgressMode& progress_mode() {
+  static ProgressMode mode = ProgressMode::automatic;
+  return mode;
 }
 
+// How progress appears: by --progress and whether stderr is a terminal.
+enum class ProgressStyle { none, line, heartbeat };
+
+ProgressStyle progress_style() {
+  switch (progress_mode()) {
+    case ProgressMode::never:
+      return ProgressStyle::none;
+    case ProgressMode::always:
+      return ProgressStyle::line;
+    case ProgressMode::automatic:
+      break;
+  }
+  return isatty(STDERR_FILENO) != 0 ? ProgressStyle::line : ProgressStyle::heartbeat;
+}
+
+// Seconds from the environment variable `name`, when it is set; an unusable value is refused,
+// naming it.
+std::optional<double> seconds_from_env(const char* name) {
+  const char* v = std::getenv(name);
+  if (v == nullptr) return std::nullopt;
+  char* end = nullptr;
+  const double x = std::strtod(v, &end);
+  if (end == v || *end != '\0' || !(x >= 0 && x <= 86400)) {
+    throw Error(fmt::format("{}='{}' is not a number of seconds (0..86400)", name, v));
+  }
+  return x;
+}
+
+// Seconds a task runs before its first progress: PHONGSIM_PROGRESS_AFTER, else 2 for the
+// terminal line (short runs stay quiet) and 10 for heartbeats.
+double progress_after(ProgressStyle style) {
+  static const std::optional<double> after = seconds_from_env("PHONGSIM_PROGRESS_AFTER");
+  return after.value_or(style == ProgressStyle::heartbeat ? 10.0 : 2.0);
+}
+
+// Seconds between heartbeat lines: PHONGSIM_PROGRESS_EVERY, else 20.
+double heartbeat_every() {
+  static const double every = seconds_from_env("PHONGSIM_PROGRESS_EVERY").value_or(20.0);
+  return every;
+}
+
+// Elapsed time as a heartbeat line says it: 42s, 1m40s, 2h05m00s.
+std::string elapsed_text(double seconds) {
+  const auto s = static_cast<std::uint64_t>(seconds);
+  if (s < 60) return fmt::format("{}s", s);
+  if (s < 3600) return fmt::format("{}m{:02}s", s / 60, s % 60);
+  return fmt::format("{}h{:02}m{:02}s", s / 3600, s / 60 % 60, s % 60);
+}
+
+using Clock = std::chrono::steady_clock;
+
+Clock::duration seconds(double s) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+}
+
+}  // namespace
+
+void set_progress_mode(ProgressMode mode) { progress_mode() = mode; }
+
 Progress progress_line(bool quiet) {
-  if (quiet || !progress_shown()) return [](std::string_view, auto, auto) {};
-  const auto after = std::chrono::duration<double>(progress_after());
-  using Clock = std::chrono::steady_clock;
+  const ProgressStyle style = quiet ? ProgressStyle::none : progress_style();
+  if (style == ProgressStyle::none) return [](std::string_view, auto, auto) {};
   struct State {
+    std::mutex mutex;  // cosim's workers report from their own threads
     Clock::time_point start = Clock::now();
-    Clock::time_point last;
-    bool shown = false;
+    Clock::time_point next;  // the earliest time of the next line
+    bool shown = false;      // a terminal line is on the screen
   };
   auto state = std::make_shared<State>();
-  return [state, after](std::string_view what, std::uint64_t done, std::uint64_t total) {
+  state->next = state->start + seconds(progress_after(style));
+  // The terminal line: at most five updates a second.
+  const Clock::duration every =
+      seconds(style == ProgressStyle::heartbeat ? heartbeat_every() : 0.2);
+  return [state, style, every](std::string_view what, std::uint64_t done, std::uint64_t total) {
+    const std::lock_guard lock(state->mutex);
     const auto now = Clock::now();
-    if (done == total && total != 0) {  // finished: clear the line if one is shown
+    if (done == total && total != 0) {  // finished: clear the terminal line if one is shown
       if (state->shown) fmt::print(stderr, "\r\033[K");
       state->shown = false;
       return;
     }
-    if (now - state->start < after || now - state->last < std::chrono::milliseconds(200)) {
+    if (now < state->next) return;
+    state->next = now + every;
+    const double s = std::chrono::duration<double>(now - state->start).count();
+    if (style == ProgressStyle::heartbeat) {
+      fmt::print(stderr, "phongsim: {}: {}, {}\n", what,
+                 total == 0 ? fmt::to_string(done) : fmt::format("{} of {}", done, total),
+                 elapsed_text(s));
       return;
     }
-    state->last = now;
     state->shown = true;
-    const double s = std::chrono::duration<double>(now - state->start).count();
     if (total == 0) {
       fmt::print(stderr, "\r\033[K  {}: {} ({:.0f} s)", what, done, s);
     } else {
@@ -429,16 +622,30 @@ Progress progress_line(bool quiet) {
 }
 
 void install_tool_progress() {
-  if (!progress_shown()) return;
-  set_wait_hook([shown = false, after = progress_after()](const std::vector<std::string>& argv,
-                                                          double seconds,
-                                                          const fs::path& log) mutable {
-    if (seconds < 0) {
-      if (shown) fmt::print(stderr, "\r\033[K");
-      shown = false;
+  // Unusable values are refused now, before any work.
+  (void)progress_after(ProgressStyle::line);
+  (void)heartbeat_every();
+  struct State {
+    std::mutex mutex;  // helper programs may run from several threads
+    bool shown = false;
+    std::optional<Clock::time_point> last;  // the last heartbeat line
+  };
+  // The style is asked at each call: --progress is parsed after this is installed.
+  set_wait_hook([state = std::make_shared<State>()](const std::vector<std::string>& argv,
+                                                    double seconds_run, const fs::path& log) {
+    const ProgressStyle style = progress_style();
+    const std::lock_guard lock(state->mutex);
+    if (seconds_run < 0) {
+      if (state->shown) fmt::print(stderr, "\r\033[K");
+      state->shown = false;
       return;
     }
-    if (seconds < after) return;
+    if (style == ProgressStyle::none || seconds_run < progress_after(style)) return;
+    if (style == ProgressStyle::heartbeat) {
+      const auto now = Clock::now();
+      if (state->last && now - *state->last < seconds(heartbeat_every())) return;
+      state->last = now;
+    }
     std::string what = fs::path(argv.front()).filename().string();
     if (what == "cmake" || what == fs::path(cmake_program()).filename().string()) {
       const bool build = std::find(argv.begin(), argv.end(), "--build") != argv.end();
@@ -455,8 +662,12 @@ void install_tool_progress() {
         steps = " " + it->str();
       }
     }
-    fmt::print(stderr, "\r\033[K  {}: {:.0f} s{}", what, seconds, steps);
-    shown = true;
+    if (style == ProgressStyle::heartbeat) {
+      fmt::print(stderr, "phongsim: {}: {}{}\n", what, elapsed_text(seconds_run), steps);
+      return;
+    }
+    fmt::print(stderr, "\r\033[K  {}: {:.0f} s{}", what, seconds_run, steps);
+    state->shown = true;
   });
 }
 

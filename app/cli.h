@@ -49,6 +49,15 @@ CLI::Option* add_int(CLI::App& cmd, const std::string& name, int& value,
 CLI::Option* add_real(CLI::App& cmd, const std::string& name, double& value,
                       const std::string& description, double lo, double hi);
 
+// An option that is one of `choices`, shown as "a|b|c" in --help, its default the value's.
+CLI::Option* add_choice(CLI::App& cmd, const std::string& name, std::string& value,
+                        const std::string& description, const std::vector<std::string>& choices);
+
+// What every command shares, once all are added (main() calls it): --help in plain words (an
+// option's kind, a range or its choices, "(default X)" at the end of its description; no CLI11
+// type names, validator texts or flag values), and --progress on every command that runs.
+void add_common_options(CLI::App& app);
+
 // PHONGSIM_QUICK=1 in the environment: every command runs at a reduced size, for smoke tests of
 // the documented commands (tests/doc_commands_test.py; docs/cosim.md says what shrinks). Each
 // quick command says so on stderr once.
@@ -124,19 +133,46 @@ struct Loaded {
 
 // DUTs of the target's RTL (located, built on demand or refused under --no-build), what to call
 // that RTL in a summary, and the options that select it again.
+// What RTL a verdict is about, as data (the JSON's runs[].rtl; docs/json.md).
+struct RtlIdentity {
+  std::string top;
+  std::string source;     // "builtin" (phongsim's rtl/), "rtl" (--rtl, -f), "plugin" (--rtl-plugin)
+  std::string simulator;  // "verilator", "icarus"
+  std::filesystem::path plugin;  // Verilator: the plugin run
+  // Verilator: the plugin's record (key, files and included files as built, flags). Icarus,
+  // which compiles the files when the run starts: the files' hashes then, no key, no flags.
+  PluginSources sources;
+  std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::string> defines;
+  std::vector<RtlParam> params;
+};
+
 struct Rtl {
   DutFactory make_dut;
   std::string label;
   std::string options;
+  RtlIdentity identity;
 };
 [[nodiscard]] Rtl rtl_of(const Loaded& l, const Target& t);
 
-// A co-simulation subject for `l` and the target's RTL; `stimulus` must outlive it.
-[[nodiscard]] CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus);
+// A co-simulation subject for `l` and the target's RTL; `stimulus` must outlive it. `identity`
+// (optional) receives what RTL it runs.
+[[nodiscard]] CosimSubject subject_of(const Loaded& l, const Target& t, const Stimulus& stimulus,
+                                      RtlIdentity* identity = nullptr);
 
-// Progress on stderr: a self-overwriting line when stderr is a terminal, nothing otherwise (logs
-// stay clean); shown once the command has run for 2 s (short runs stay quiet), at most five
-// updates a second, with the elapsed time. (what, done, total); total 0: unknown.
+// Progress on stderr (never stdout), as --progress says (docs/cosim.md):
+//   auto (the default): the terminal line when stderr is a terminal, heartbeat lines otherwise;
+//   always: the terminal line; never: nothing.
+// The terminal line overwrites itself ("\r", erase to the end of the line): shown once the
+// command has run for 2 s (short runs stay quiet), at most five updates a second, with the
+// elapsed time, cleared when the work ends. A heartbeat line is one plain line for a CI log,
+// "phongsim: WHAT: DONE of TOTAL, 1m40s": the first after 10 s, then at most one every 20 s (a
+// sign of life without a flood). PHONGSIM_PROGRESS_AFTER=S changes the first delay of either,
+// PHONGSIM_PROGRESS_EVERY=S the heartbeat's interval (0: every update; for tests).
+enum class ProgressMode { automatic, always, never };
+void set_progress_mode(ProgressMode mode);
+
+// A task's progress: (what, done, total); total 0: unknown; done == total != 0: finished.
 using Progress = std::function<void(std::string_view, std::uint64_t, std::uint64_t)>;
 [[nodiscard]] Progress progress_line(bool quiet = false);
 
@@ -150,17 +186,16 @@ using Progress = std::function<void(std::string_view, std::uint64_t, std::uint64
 void set_invocation(std::string_view argv0);
 [[nodiscard]] const std::string& invocation();
 
-// Whether progress_line() shows anything (stderr is a terminal).
-[[nodiscard]] bool progress_shown();
-
-// Progress of the helper programs phongsim waits for (Verilation through cmake, Yosys, nextpnr)
-// on a terminal: the program, its elapsed time and, for a build, ninja's [done/total].
+// Progress of the helper programs phongsim waits for (Verilation through cmake, Yosys, nextpnr),
+// shown as progress_line() is: the program, its elapsed time and, for a build, ninja's
+// [done/total]. Refuses an unusable PHONGSIM_PROGRESS_AFTER or PHONGSIM_PROGRESS_EVERY (Error).
 void install_tool_progress();
 
 // One co-simulation of a command (cosim's matrix, sweep search's verification) and its time.
 struct CosimRun {
   CosimReport report;
   double seconds = 0;
+  RtlIdentity rtl;
 };
 
 // Text for XML (&, <, >, ", ').

@@ -153,12 +153,13 @@ nlohmann::ordered_json to_json(const CosimFailure& f, const std::string& report)
           {"report", report}};
 }
 
-nlohmann::ordered_json to_json(const CosimReport& r, double seconds, const Target& t) {
+nlohmann::ordered_json to_json(const CosimRun& run, const Target& t) {
+  const CosimReport& r = run.report;
   return {
       {"pipeline", r.pipeline},
       {"config", r.config_name},
       {"config_path", r.config_path},
-      {"rtl", r.rtl_label},
+      {"rtl", rtl_json(run.rtl)},
       {"x_init", t.x_init_mode()},
       {"x_seed", t.x_init_seed() != 0 ? nlohmann::ordered_json(t.x_init_seed())
                                       : nlohmann::ordered_json(nullptr)},
@@ -188,7 +189,7 @@ nlohmann::ordered_json to_json(const CosimReport& r, double seconds, const Targe
                       ? nlohmann::ordered_json{{"min", r.latency_min}, {"max", r.latency_max}}
                       : nlohmann::ordered_json(nullptr)},
       {"passed", r.passed},
-      {"seconds", seconds},
+      {"seconds", run.seconds},
       {"trace", r.trace_written.empty() ? nlohmann::ordered_json(nullptr)
                                         : nlohmann::ordered_json(r.trace_written)},
       {"failure",
@@ -333,7 +334,8 @@ int run(CosimCli& c) {
       o.random_vectors = 0;  // --vector-index replaces --vectors; keep the repro line exact
     }
     const Stimulus stimulus = l.pipeline->make_stimulus(*l.model, l.cfg);
-    const CosimSubject subject = subject_of(l, targets[k], stimulus);
+    RtlIdentity identity;
+    const CosimSubject subject = subject_of(l, targets[k], stimulus, &identity);
     if (!c.coverage.empty()) {
       CoverpointSampler sampler = l.pipeline->coverpoints(*l.model, l.cfg);
       count_coverpoints(sampler, *l.model, stimulus, o.seed, o.directed, o.random_vectors,
@@ -350,7 +352,7 @@ int run(CosimCli& c) {
                                              l.cfg.name(), source.str(), sink.str());
         o.progress = [&](std::uint64_t done, std::uint64_t all) { progress(what, done, all); };
         const auto start = std::chrono::steady_clock::now();
-        CosimRun r{cosim(subject, o), 0};
+        CosimRun r{cosim(subject, o), 0, identity};
         progress(what, 1, 1);
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (trace_file) {
@@ -443,7 +445,7 @@ int run(CosimCli& c) {
     j["passed"] = failed == 0;
     j["runs_passed"] = runs.size() - failed;
     j["runs"] = nlohmann::ordered_json::array();
-    for (const CosimRun& r : runs) j["runs"].push_back(to_json(r.report, r.seconds, c.target));
+    for (const CosimRun& r : runs) j["runs"].push_back(to_json(r, c.target));
     j["coverage"] = nullptr;
     if (coverage) {
       const std::filesystem::path dir = c.coverage;
@@ -508,7 +510,8 @@ void add_cosim(CLI::App& app, Action& action) {
                   "each)")
       ->capture_default_str();
   c->index_opt = add_count(*cmd, "--vector-index", c->vector_index,
-                           "run only this vector (as numbered in a failure report)", kMaxVectors);
+                           "run only this vector (as numbered in a failure report)", kMaxVectors)
+                     ->default_str("");  // no default: every vector
   cmd->add_flag("!--no-directed", c->options.directed, "skip the directed corners");
   cmd->add_option("--trace", c->trace,
                   "write a waveform, FST (FILE.fst) or VCD (FILE.vcd): the window before the "
@@ -522,7 +525,8 @@ void add_cosim(CLI::App& app, Action& action) {
   cmd->add_option("--jobs", c->options.jobs,
                   "workers (threads): the vectors go to N DUTs, each taking a contiguous 1/N of "
                   "the stream from reset (the verdict states the longest sequence since reset)")
-      ->check(CLI::Range(1U, 256U))
+      ->check(CLI::Range(1U, 256U).description(""))
+      ->type_name("1..256")
       ->capture_default_str();
   add_count(*cmd, "--reset-every", c->options.reset_every,
             "a fresh DUT (from reset) every N vectors, at group starts; the workers share those "

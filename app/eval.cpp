@@ -114,9 +114,7 @@ void add_eval(CLI::App& app, Action& action) {
       app.add_subcommand("eval", "Evaluate a CSV of input vectors through the model or the RTL");
   c->target.add_options(*cmd);
   c->target.add_simulator_option(*cmd);
-  cmd->add_option("--backend", c->backend, "model or rtl")
-      ->check(CLI::IsMember({"model", "rtl"}))
-      ->capture_default_str();
+  add_choice(*cmd, "--backend", c->backend, "model or rtl", {"model", "rtl"});
   cmd->add_option("--in", c->in, "input CSV: header of input field names, one vector per row")
       ->required();
   cmd->add_option("--out", c->out,

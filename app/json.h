@@ -15,6 +15,8 @@
 
 namespace phongsim::cli {
 
+struct RtlIdentity;
+
 inline constexpr std::string_view kJsonSchema = "phongsim/1";
 
 // {"schema": "phongsim/1", "command": command}.
@@ -29,6 +31,10 @@ inline constexpr std::string_view kJsonSchema = "phongsim/1";
 // first} (docs/json.md).
 [[nodiscard]] nlohmann::ordered_json contract_json(const std::vector<std::string>& clauses,
                                                    const ContractCounts& counts);
+
+// The RTL a verdict is about: {top, source, simulator, key, plugin, files, includes, include_dirs,
+// defines, parameters, flags} (docs/json.md, runs[].rtl).
+[[nodiscard]] nlohmann::ordered_json rtl_json(const RtlIdentity& rtl);
 
 // A --json output opened up front (an unwritable path fails before the work); `-` is standard
 // output. Empty path: none.

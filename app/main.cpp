@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
   add_analyze(app, action);
   add_list(app, action);
   add_contract(app, action);
+  add_common_options(app);  // plain --help, and --progress on every command
 
   phongsim::cli::set_invocation(argc > 0 ? argv[0] : "phongsim");
   try {

@@ -174,9 +174,8 @@ int run_search(const SearchCli& c) {
   SearchSpec spec = load_search(c.file);
   spec.verify_vectors = quick_cap(spec.verify_vectors, kQuickVectors);
   const Config base = Config::load(spec.base);
-  const fs::path dest = c.out.empty()
-                            ? data_root() / "configs" / base.pipeline() / (spec.name + ".toml")
-                            : fs::path(c.out);
+  // Never into the source tree or an installed prefix: the current folder unless --out says.
+  const fs::path dest = c.out.empty() ? fs::path(spec.name + ".toml") : fs::path(c.out);
   if (!c.junit.empty() && !c.verify)
     throw Error("--junit reports the verification: not with --no-verify");
   if (c.rtl.user_rtl() && !c.verify) {
@@ -245,7 +244,7 @@ int run_search(const SearchCli& c) {
     progress("search: verifying", 1, 1);
     if (junit_file) {  // written whether the verification passes or not
       const CosimRun run{
-          rep, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+          rep, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), {}};
       std::fputs(junit_xml(std::span(&run, 1)).c_str(), junit_file->get());
       junit_file->commit();
     }
@@ -321,8 +320,9 @@ void add_sweep(CLI::App& app, Action& action) {
       "search", "narrowest fraction bits of a base's signals within an error budget");
   s->add_option("file", search->file, "the search file (docs/exploration.md)")->required();
   s->add_option("--out,--write", search->out,
-                "where the found configuration goes (default configs/<pipeline>/<search "
-                "name>.toml; - is standard output; --write: the same, its older name)");
+                "where the found configuration goes (default: <search name>.toml in the current "
+                "folder; - is standard output; --write: the same, its older name)")
+      ->type_name("FILE");
   s->add_option("--json", search->json,
                 "also write the result as JSON (docs/json.md; - is standard output)");
   s->add_option("--junit", search->junit,

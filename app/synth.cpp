@@ -85,8 +85,8 @@ nlohmann::ordered_json result_json(const Loaded& l, const RtlDesign& d, const Sy
 // --all: every configuration in configs/ (of the pipeline given, else of every pipeline).
 int run_all(const SynthCli& c) {
   if (!c.target.config.empty()) throw Error("--all and --config exclude each other");
-  if (c.target.user_rtl() || !c.target.plugin.empty() || !c.target.top.empty()) {
-    throw Error("--all synthesizes the built-in RTL: no --rtl, --top or --rtl-plugin");
+  if (c.target.user_rtl() || !c.target.top.empty()) {
+    throw Error("--all synthesizes the built-in RTL: no --rtl or --top");
   }
   if (c.check && !c.json.empty()) throw Error("--check and --json exclude each other");
   std::vector<const PipelineInfo*> which;
@@ -189,7 +189,9 @@ void add_synth(CLI::App& app, Action& action) {
       "synth",
       "Synthesize a configuration's RTL with Yosys (cells, transistor estimate, logic depth per "
       "register; latches refused), cached by content");
-  c->target.add_options(*cmd);
+  // Synthesis reads sources: no plugin (--rtl-plugin) and no Verilation (--no-build).
+  c->target.add_options(*cmd, false);
+  c->target.add_source_options(*cmd);
   cmd->add_flag("--ice40", c->ice40,
                 "also iCE40 synthesis and nextpnr place and route (LUTs, DSPs, fmax)");
   cmd->add_flag("--all", c->all,

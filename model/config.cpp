@@ -194,8 +194,9 @@ std::vector<RtlParam> Config::rtl_parameters() const {
     } catch (const Error& err) {
       throw Error(fmt::format("{}:{}: [format] {}: {}", origin_, e.line, key, err.what()));
     }
-    params.push_back(
-        {upper_camel(key) + "Fmt", (f.is_signed ? 65536 : 0) + f.int_bits * 256 + f.frac_bits});
+    params.push_back({upper_camel(key) + "Fmt", format_word(f),
+                      fmt::format("[format] {} = {} (format word: signed·65536 + int·256 + frac)",
+                                  key, f.str())});
   }
   for (const auto& [key, e] : table("mode")) {
     std::int64_t code = 0;
@@ -209,14 +210,15 @@ std::vector<RtlParam> Config::rtl_parameters() const {
             fmt::format("{}:{}: [mode] {}: unknown mode '{}'", origin_, e.line, key, e.text));
       }
     }
-    params.push_back({upper_camel(key), code});
+    params.push_back(
+        {upper_camel(key), code, fmt::format("[mode] {} = {} (encoding {})", key, e.text, code)});
   }
   for (const auto& [key, e] : table("param")) {
     if (!e.is_integer) {
       throw Error(
           fmt::format("{}:{}: [param] {}: '{}' is not an integer", origin_, e.line, key, e.text));
     }
-    params.push_back({upper_camel(key), e.integer});
+    params.push_back({upper_camel(key), e.integer, fmt::format("[param] {} = {}", key, e.integer)});
   }
   return params;
 }

@@ -27,10 +27,20 @@
 namespace phongsim {
 
 // One parameter of the pipeline's top module.
+// A format as the RTL's *Fmt parameters carry it (fx_pkg::fx_fmt): signed·65536 + int·256 +
+// frac.
+[[nodiscard]] constexpr std::int64_t format_word(fx::Format f) {
+  return (f.is_signed ? 65536 : 0) + f.int_bits * 256 + f.frac_bits;
+}
+
 struct RtlParam {
   std::string name;  // UpperCamelCase: [mode] out_round -> OutRound, [format] p -> PFmt
   std::int64_t value;
-  bool operator==(const RtlParam&) const = default;
+  // Where it comes from, in words (phongsim contract): "[format] p = S1.10 (format word: ...)",
+  // "[mode] out_round = half_even (encoding 2)", "[param] k = 2".
+  std::string meaning;
+  // The RTL sees name and value only: two parameters that set the same value are equal.
+  bool operator==(const RtlParam& o) const { return name == o.name && value == o.value; }
 };
 
 class Config {

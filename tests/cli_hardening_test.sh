@@ -224,7 +224,7 @@ EOT
 
   interface)
     # Finding 8: --version, unknown commands named, a help screen per sweep action, one flag per
-    # concept, progress on a terminal only.
+    # concept, progress as --progress says (a line on a terminal, heartbeats in a log).
     "$phongsim" --version >"$tmp/v" || fail "--version"
     grep -qE '^phongsim [0-9]+\.[0-9]+ \(.+\)$' "$tmp/v" && grep -q 'Verilator' "$tmp/v" &&
       grep -q 'Yosys' "$tmp/v" || fail "--version: $(cat "$tmp/v")"
@@ -250,17 +250,53 @@ EOT
     "$phongsim" sweep search "$src/sweeps/lirp-search.toml" --write "$tmp/found.toml" --no-verify \
       >/dev/null || fail "sweep search --write"
     [ -s "$tmp/found.toml" ] || fail "--write wrote nothing"
-    # Progress: on a terminal (a pseudo-terminal here), a line once a run takes over
-    # PHONGSIM_PROGRESS_AFTER seconds (0 here, so the check does not depend on the machine's
-    # speed); nothing when stderr is not a terminal.
+    # Progress (--progress auto, the default): on a terminal (a pseudo-terminal here), a line
+    # updating in place once a run takes over PHONGSIM_PROGRESS_AFTER seconds (0 here, so the
+    # check does not depend on the machine's speed).
     progress=("$phongsim" cosim lyon --vectors 300000 --no-directed)
     PHONGSIM_PROGRESS_AFTER=0 "$src/tests/on_terminal.py" "$tmp/pty" "${progress[@]}" ||
       fail "progress: $(cat "$tmp/pty")"
     grep -qF $'\r\033[K  cosim lyon/default' "$tmp/pty" && grep -qF ' s)' "$tmp/pty" ||
       fail "no progress line on a terminal: $(tail -c 300 "$tmp/pty")"
+    # When stderr is not a terminal (a CI log), plain heartbeat lines instead, at most one every
+    # PHONGSIM_PROGRESS_EVERY seconds (0 here: one an update): no \r, no escape codes; stdout
+    # stays the report alone.
+    PHONGSIM_PROGRESS_AFTER=0 PHONGSIM_PROGRESS_EVERY=0 "${progress[@]}" >"$tmp/report" \
+      2>"$tmp/not_tty" || fail "progress: $(cat "$tmp/not_tty")"
+    grep -qE '^phongsim: cosim lyon/default .*: [0-9]+ of 300000, [0-9]+s$' "$tmp/not_tty" ||
+      fail "no heartbeat when stderr is not a terminal: $(head -c 300 "$tmp/not_tty")"
+    ! grep -q $'[\r\033]' "$tmp/not_tty" || fail "a heartbeat line with \\r or an escape code"
+    # (Helper programs it runs, such as verilator, may add lines of their own:
+    # "phongsim: verilator: 0s".)
+    [ "$(grep -cv '^phongsim: ' "$tmp/not_tty")" -eq 0 ] &&
+      [ "$(wc -l <"$tmp/report")" -eq 1 ] && grep -q '^PASS lyon/default' "$tmp/report" ||
+      fail "heartbeat: stderr $(head -c 300 "$tmp/not_tty"), stdout $(cat "$tmp/report")"
+    # The default interval: one line at most in a run this short (the first, at once here).
     PHONGSIM_PROGRESS_AFTER=0 "${progress[@]}" >/dev/null 2>"$tmp/not_tty" ||
       fail "progress: $(cat "$tmp/not_tty")"
-    [ ! -s "$tmp/not_tty" ] || fail "progress printed when stderr is not a terminal: $(cat "$tmp/not_tty")"
+    [ "$(grep -c '^phongsim: cosim' "$tmp/not_tty")" -le 1 ] ||
+      fail "heartbeat flood: $(cat "$tmp/not_tty")"
+    # Helper programs (Yosys here) the same way.
+    PHONGSIM_PROGRESS_AFTER=0 PHONGSIM_PROGRESS_EVERY=0 "$phongsim" synth --check \
+      --config "$default" >/dev/null 2>"$tmp/tool" || fail "progress: $(cat "$tmp/tool")"
+    grep -qE '^phongsim: yosys: [0-9]+s$' "$tmp/tool" ||
+      fail "no tool heartbeat: $(cat "$tmp/tool")"
+    # --progress never: nothing, terminal or not; always: the terminal line, even into a file.
+    PHONGSIM_PROGRESS_AFTER=0 PHONGSIM_PROGRESS_EVERY=0 "${progress[@]}" --progress never \
+      >/dev/null 2>"$tmp/never" || fail "progress: $(cat "$tmp/never")"
+    [ ! -s "$tmp/never" ] || fail "--progress never printed: $(head -c 300 "$tmp/never")"
+    PHONGSIM_PROGRESS_AFTER=0 "$src/tests/on_terminal.py" "$tmp/pty" "${progress[@]}" \
+      --progress never || fail "progress: $(cat "$tmp/pty")"
+    ! grep -q $'\r\033' "$tmp/pty" ||
+      fail "--progress never on a terminal: $(tail -c 300 "$tmp/pty")"
+    PHONGSIM_PROGRESS_AFTER=0 "${progress[@]}" --progress=always >/dev/null 2>"$tmp/always" ||
+      fail "progress: $(cat "$tmp/always")"
+    grep -qF $'\r\033[K  cosim lyon/default' "$tmp/always" ||
+      fail "--progress=always: $(head -c 300 "$tmp/always")"
+    expect_error "--progress: sometimes not in" "$phongsim" list --progress sometimes
+    PHONGSIM_PROGRESS_EVERY=soon "$phongsim" list >/dev/null 2>"$tmp/err" && fail "EVERY=soon"
+    grep -q "PHONGSIM_PROGRESS_EVERY='soon' is not a number of seconds" "$tmp/err" ||
+      fail "PHONGSIM_PROGRESS_EVERY=soon: $(cat "$tmp/err")"
     ;;
 
   json)
@@ -305,6 +341,8 @@ def doc(*args):
     return j
 j = doc("lint", "--config", default)
 assert j["clean"] is True and j["files"] > 0, j
+j = doc("contract", "lirp")
+assert [p["name"] for p in j["ports"]][:2] == ["clk_i", "rst_ni"] and j["top"] == "lirp_unit", j
 j = doc("build-rtl", "--config", default)
 assert j["plugins"][0]["pipeline"] == "lirp", j
 j = doc("list")
@@ -356,6 +394,7 @@ assert j["formats"] == {"p": "S1.8", "a": "1.9"} and j["bits_saved"] == 3, j
 j = doc("cosim", "--config", default, "--vectors", "100", "--backpressure", "none,random:0.5")
 assert len(j["runs"]) == 2 and j["runs"][1]["throughput"] == 1.0, j
 for run in j["runs"]:  # every accepted vector counted once against the input contract
+    assert run["rtl"]["source"] == "builtin" and len(run["rtl"]["key"]) == 64, run["rtl"]
     assert run["in_contract"] + run["out_of_contract"] == run["vectors"], run
     assert sum(c["out_of_contract"] for c in run["contract_clauses"]) == run["out_of_contract"], run
 vectors = os.path.join(tmp, "vectors.csv")

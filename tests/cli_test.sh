@@ -10,6 +10,29 @@ case "$case_name" in
       $phongsim $sub --help >"$tmp/help" 2>&1 || fail "phongsim $sub --help failed"
       grep -q -i "usage" "$tmp/help" || fail "phongsim $sub --help prints no usage"
     done
+    # Every command's (and sweep action's) help in plain words (issue 44): no CLI11 artefacts
+    # such as "UINT:UINT in [1 - 256]=1" or a flag's "{false}", and --progress; the commands as
+    # --help lists them.
+    commands() { "$phongsim" "$@" --help | sed -n '/^Subcommands:/,$s/^  \([a-z-]*\) .*/\1/p'; }
+    leaves=()
+    for cmd in $(commands); do
+      actions=$(commands "$cmd")
+      [ -n "$actions" ] || leaves+=("$cmd")
+      for action in $actions; do leaves+=("$cmd $action"); done
+    done
+    [ "${#leaves[@]}" -ge 17 ] || fail "commands not found in --help: ${leaves[*]}"
+    for words in "${leaves[@]}"; do
+      # shellcheck disable=SC2086  # "sweep run": two words
+      $phongsim $words --help >"$tmp/help" 2>&1 || fail "phongsim $words --help failed"
+      ! grep -nE '\{false\}|\{true\}|UINT|INT:|TEXT:' "$tmp/help" ||
+        fail "phongsim $words --help shows CLI11's artefacts"
+      grep -q -- '--progress auto|always|never' "$tmp/help" ||
+        fail "phongsim $words --help has no --progress"
+    done
+    "$phongsim" synth --help >"$tmp/help"
+    # synth reads sources: no plugin, nothing Verilated.
+    ! grep -qE -- '^  (--rtl-plugin|--no-build)' "$tmp/help" ||
+      fail "synth --help lists cosim's options"
     expect_error "requires|subcommand" "$phongsim"
     expect_error "unknown-option|The following argument was not expected|--bogus" \
       "$phongsim" cosim --config "$default" --bogus
@@ -287,11 +310,13 @@ EOT
     # first use, then reused.
     export PHONGSIM_CACHE="$tmp/cache"
     write_config "$tmp/mine.toml" S1.9 1.9 S1.8
-    expect_error "the RTL of lirp is not built for its current content and parameters \(first build of these parameters\)" \
+    expect_error "the RTL of lirp is not built for its current content and parameters \(first build of this top with these parameters\)" \
       "$phongsim" cosim --config "$tmp/mine.toml" --no-build --vectors 10
-    # The first run on a terminal (a pseudo-terminal): the Verilation shows its progress.
-    "$src/tests/on_terminal.py" "$tmp/first" "$phongsim" cosim --config "$tmp/mine.toml" \
-      --vectors 20000 --backpressure random:0.3 || fail "first run failed: $(cat "$tmp/first")"
+    # The first run on a terminal (a pseudo-terminal; the line after the usual 2 s): the
+    # Verilation shows its progress.
+    PHONGSIM_PROGRESS_AFTER=2 "$src/tests/on_terminal.py" "$tmp/first" "$phongsim" cosim \
+      --config "$tmp/mine.toml" --vectors 20000 --backpressure random:0.3 ||
+      fail "first run failed: $(cat "$tmp/first")"
     grep -qF $'\r\033[K  Verilating (' "$tmp/first" || fail "no Verilation progress on a terminal"
     grep -q "Verilating lirp" "$tmp/first" || fail "first run did not build: $(cat "$tmp/first")"
     "$phongsim" cosim --config "$tmp/mine.toml" --vectors 20000 --no-build >"$tmp/second" 2>&1 \
@@ -320,7 +345,7 @@ EOT
     expect_error "not built for its current content.*changed since the last build: fx_resize.sv" \
       run --no-build
     run >"$tmp/rebuilt" 2>&1 || fail "rebuild: $(cat "$tmp/rebuilt")"
-    grep -q "Verilating lirp (changed since the last build: fx_resize.sv" "$tmp/rebuilt" ||
+    grep -q "Verilating lirp/default (changed since the last build: fx_resize.sv" "$tmp/rebuilt" ||
       fail "no rebuild notice: $(cat "$tmp/rebuilt")"
     # Extra Verilator flags are part of the key too, and the refusal says so.
     PHONGSIM_VERILATOR_FLAGS="--output-split 500" expect_error \
@@ -370,7 +395,7 @@ EOT
     echo "// an edit" >>"$t/inc/my_lirp_top.svh"
     expect_error "a file it includes changed: my_lirp_top.svh" run -F "$t/lists/files.f" --no-build
     run -F "$t/lists/files.f" >"$tmp/d" 2>&1 || fail "rebuild after an include edit: $(cat "$tmp/d")"
-    grep -q "Verilating lirp (a file it includes changed: my_lirp_top.svh" "$tmp/d" || fail "$(cat "$tmp/d")"
+    grep -q "Verilating lirp/default (a file it includes changed: my_lirp_top.svh" "$tmp/d" || fail "$(cat "$tmp/d")"
     # A define: its own build, and the bug it selects fails; the reproduce line, pasted as printed,
     # carries the list and the define.
     expect_error 'its defines changed: now "MY_LIRP_TIES_UP=1"' run -F "$t/lists/files.f" -D MY_LIRP_TIES_UP=1 --no-build
@@ -410,6 +435,79 @@ EOT
     expect_error "no such include folder" run --rtl "$t/src" +incdir+"$tmp/nope"
     expect_error "'1X' is not a macro name" run -F "$t/lists/files.f" -D 1X
     expect_error "-I, -D, \+incdir\+ and \+define\+ go with your RTL" "$phongsim" cosim lirp -D X=1
+    ;;
+
+  reports)
+    # Reports that say what is true (issue 46): the cosim JSON's rtl as data (every file and
+    # include with its SHA-256, as built); a missing top named with the modules the files have;
+    # rebuild reasons that name what changed; a --vector-index run counts its own output.
+    export PHONGSIM_CACHE="$tmp/cache"
+    mkdir -p "$PHONGSIM_CACHE"
+    cp -r "$build/rtl-cache"/runtime-* "$PHONGSIM_CACHE/"
+    cp -r "$src/examples/your-rtl" "$tmp/ex"
+    t="$tmp/ex/tree"
+    "$phongsim" cosim lirp -F "$t/lists/files.f" --top my_lirp_top --vectors 100 \
+      --json "$tmp/tree.json" >"$tmp/a" 2>&1 || fail "tree: $(cat "$tmp/a")"
+    grep -q "Verilating lirp/default (first build of this top with these parameters" "$tmp/a" || fail "$(cat "$tmp/a")"
+    "$phongsim" cosim lirp --vectors 100 --json "$tmp/builtin.json" >"$tmp/b" 2>&1 || fail "$(cat "$tmp/b")"
+    "$phongsim" cosim lirp -F "$t/lists/files.f" --top my_lirp_top --vectors 100 --simulator icarus \
+      --json "$tmp/icarus.json" >"$tmp/c" 2>&1 || fail "icarus: $(cat "$tmp/c")"
+    python3 - "$tmp" "$t" <<'PY' || fail "runs[].rtl"
+import hashlib, json, os, sys
+tmp, tree = sys.argv[1], sys.argv[2]
+def sha(path):
+    return hashlib.sha256(open(path, "rb").read()).hexdigest()
+def check_files(entries, expected):
+    got = [(os.path.realpath(f["path"]), f["sha256"]) for f in entries]
+    want = [(os.path.realpath(p), sha(p)) for p in expected]
+    assert got == want, (got, want)
+rtl = json.load(open(f"{tmp}/tree.json"))["runs"][0]["rtl"]
+assert rtl["top"] == "my_lirp_top" and rtl["source"] == "rtl" and rtl["simulator"] == "verilator", rtl
+assert len(rtl["key"]) == 64 and rtl["key"][:16] in rtl["plugin"], rtl
+# Packages first: my_lirp_modes.sv, then the list's order.
+check_files(rtl["files"], [f"{tree}/src/my_lirp_modes.sv", f"{tree}/src/my_lirp_top.sv",
+                           f"{tree}/../my_lirp.sv"])
+check_files(rtl["includes"], [f"{tree}/inc/my_lirp_top.svh"])
+assert [os.path.realpath(d) for d in rtl["include_dirs"]] == [os.path.realpath(f"{tree}/inc")], rtl
+assert rtl["parameters"]["PFmt"] == 65802 and "--assert" in rtl["flags"], rtl
+builtin = json.load(open(f"{tmp}/builtin.json"))["runs"][0]["rtl"]
+assert builtin["source"] == "builtin" and builtin["top"] == "lirp_unit", builtin
+assert any(f["path"].endswith("rtl/lirp/lirp_unit.sv") for f in builtin["files"]), builtin
+check_files(builtin["files"], [f["path"] for f in builtin["files"]])
+icarus = json.load(open(f"{tmp}/icarus.json"))["runs"][0]["rtl"]
+assert icarus["simulator"] == "icarus" and icarus["key"] is None and icarus["flags"] is None, icarus
+check_files(icarus["files"], [f"{tree}/src/my_lirp_modes.sv", f"{tree}/src/my_lirp_top.sv",
+                              f"{tree}/../my_lirp.sv"])
+PY
+    # The same files, flattened into one folder with their header: a build of its own, said so.
+    mkdir "$tmp/flat"
+    cp "$t"/src/*.sv "$t"/inc/*.svh "$tmp/ex/my_lirp.sv" "$tmp/flat/"
+    expect_error "the same files, but other include folders" \
+      "$phongsim" cosim lirp --rtl "$tmp/flat" --top my_lirp_top --vectors 10 --no-build
+    # A file that changed: named.
+    echo "// an edit" >>"$tmp/flat/my_lirp_modes.sv"
+    expect_error "changed since the last build: my_lirp_modes.sv" \
+      "$phongsim" cosim lirp --rtl "$tmp/flat" --top my_lirp_top --vectors 10 --no-build
+    # No --top, or a wrong one: the modules the files declare.
+    expect_error "no module lirp_unit in the design's files \(--top defaults to lirp_unit, the built-in design's top\); modules in these files: my_lirp_top, my_lirp" \
+      "$phongsim" cosim lirp -F "$t/lists/files.f" --vectors 10
+    expect_error "no module my_lirp_tpo in the design's files \(--top names it\); modules in these files: my_lirp_top, my_lirp" \
+      "$phongsim" cosim lirp -F "$t/lists/files.f" --top my_lirp_tpo --vectors 10
+    expect_error "no module lirp_unit in the design's files .*modules in these files: my_lirp_top, my_lirp" \
+      "$phongsim" synth lirp -F "$t/lists/files.f"
+    expect_error "no module lirp_unit in the design's files .*modules in these files: my_lirp_top, my_lirp" \
+      "$phongsim" lint lirp -F "$t/lists/files.f"
+    # --vector-index: the vector alone, its output compared.
+    wrong="$src/examples/your-rtl/my_lirp_wrong.sv"
+    "$phongsim" cosim lirp --rtl "$wrong" --top my_lirp_wrong --vectors 2000 >"$tmp/d" 2>&1
+    [ $? -eq 1 ] || fail "my_lirp_wrong: $(cat "$tmp/d")"
+    alone=$(sed -n 's/^  this vector alone: //p' "$tmp/d")
+    index=$(grep -o -- "--vector-index [0-9]*" <<<"$alone" | cut -d' ' -f2)
+    [ -n "$index" ] || fail "no vector-alone line: $(cat "$tmp/d")"
+    eval "$alone" >"$tmp/e" 2>&1
+    [ $? -eq 1 ] || fail "the vector alone: $(cat "$tmp/e")"
+    grep -qE "^FAIL lirp/default: vector $index alone \((directed|random), seed 1\), .*, 1 output compared, 1 mismatch, " \
+      "$tmp/e" || fail "$(grep '^FAIL' "$tmp/e")"
     ;;
 
   your-lyon)
@@ -756,6 +854,224 @@ EOT
     grep -qE "^found after [0-9]+ evaluations: [1-9][0-9]* fraction bits fewer, .*colour correctness 0\.96[5-9]" \
       "$tmp/stdout" || fail "cc search: $(cat "$tmp/stdout")"
     grep -q "colour correctness" "$tmp/cc.toml" || fail "cc search result: $(cat "$tmp/cc.toml")"
+    # Without --out: <name>.toml in the current folder, never into configs/ (issue 44).
+    mkdir "$tmp/here" && ls -lR "$src/configs" >"$tmp/configs_before"
+    (cd "$tmp/here" && "$phongsim" sweep search "$src/sweeps/lirp-search.toml" --no-verify) \
+      >"$tmp/stdout" 2>&1 || fail "search without --out: $(cat "$tmp/stdout")"
+    [ -s "$tmp/here/min_4lsb.toml" ] && grep -q "^wrote min_4lsb.toml$" "$tmp/stdout" ||
+      fail "search without --out: $(ls "$tmp/here"; cat "$tmp/stdout")"
+    ls -lR "$src/configs" | cmp -s - "$tmp/configs_before" || fail "search wrote into configs/"
+    ;;
+
+  lint-json)
+    # Issue 46: lint findings as data. A copy of the independent LIRP with one signal nothing
+    # uses: its finding in the JSON (file relative to the current folder, the added line, the
+    # rule), as a GitHub annotation and as a GCC-style line; --fail-on error passes on that
+    # warning and fails on an error; the built-in design is clean, with no findings.
+    sed '/^  logic       move;$/a\  logic       stray_q;' "$src/examples/your-rtl/my_lirp.sv" >"$tmp/my_lirp.sv"
+    line=$(grep -n '^  logic       stray_q;$' "$tmp/my_lirp.sv" | cut -d: -f1)
+    [ -n "$line" ] || fail "the unused signal was not added to my_lirp.sv"
+    message="Signal is not driven, nor used: 'stray_q'"
+    cd "$tmp" || fail "cd $tmp"
+    lint=("$phongsim" lint lirp --rtl my_lirp.sv --top my_lirp)
+    "${lint[@]}" --json "$tmp/lint.json" >"$tmp/text" 2>&1
+    [ $? -eq 1 ] || fail "a warning did not fail the lint with exit 1: $(cat "$tmp/text")"
+    grep -q "^%Warning-UNUSEDSIGNAL: .*my_lirp.sv:$line:" "$tmp/text" ||
+      fail "--format text is not Verilator's own text: $(cat "$tmp/text")"
+    python3 - "$tmp/lint.json" "$line" "$message" <<'EOT' || fail "lint JSON: $(cat "$tmp/lint.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+line, message = int(sys.argv[2]), sys.argv[3]
+assert j["clean"] is False and j["verilator_exit"] == 1, j
+assert j["warnings"] == 1 and j["errors"] == 0, j
+assert j["findings"] == [{"file": "my_lirp.sv", "line": line, "column": 15, "rule": "UNUSEDSIGNAL",
+                          "severity": "warning", "message": message}], j["findings"]
+EOT
+    "${lint[@]}" --format github >"$tmp/github" 2>&1
+    [ $? -eq 1 ] || fail "--format github: exit $?: $(cat "$tmp/github")"
+    grep -qxF "::warning file=my_lirp.sv,line=$line,col=15,title=UNUSEDSIGNAL::$message" "$tmp/github" ||
+      fail "no GitHub annotation of my_lirp.sv line $line: $(cat "$tmp/github")"
+    [ "$(grep -c '^::' "$tmp/github")" -eq 1 ] && ! grep -q '^%' "$tmp/github" ||
+      fail "--format github: $(cat "$tmp/github")"
+    "${lint[@]}" --format gcc >"$tmp/gcc" 2>&1
+    [ $? -eq 1 ] || fail "--format gcc: exit $?: $(cat "$tmp/gcc")"
+    grep -qxF "my_lirp.sv:$line:15: warning: $message [UNUSEDSIGNAL]" "$tmp/gcc" ||
+      fail "no GCC-style line: $(cat "$tmp/gcc")"
+    # --fail-on error: the warning printed and listed, exit 0.
+    "${lint[@]}" --format gcc --fail-on error --json "$tmp/warned.json" >"$tmp/warned" 2>&1 ||
+      fail "--fail-on error failed on a warning: $(cat "$tmp/warned")"
+    grep -qxF "my_lirp.sv:$line:15: warning: $message [UNUSEDSIGNAL]" "$tmp/warned" ||
+      fail "--fail-on error hid the warning: $(cat "$tmp/warned")"
+    python3 -c 'import json, sys; j = json.load(open(sys.argv[1])); assert j["warnings"] == 1 and len(j["findings"]) == 1, j' \
+      "$tmp/warned.json" || fail "--fail-on error JSON: $(cat "$tmp/warned.json")"
+    # An error fails with --fail-on error too (a syntax error: an annotation on its line).
+    sed 's/^endmodule/  assign = 1;\nendmodule/' my_lirp.sv >broken_lirp.sv
+    bad_line=$(grep -n "^  assign = 1;" broken_lirp.sv | cut -d: -f1)
+    "$phongsim" lint lirp --rtl broken_lirp.sv --top my_lirp --fail-on error --format github \
+      >"$tmp/broken" 2>&1
+    [ $? -eq 1 ] || fail "an error passed --fail-on error: $(cat "$tmp/broken")"
+    grep -q "^::error file=broken_lirp.sv,line=$bad_line," "$tmp/broken" ||
+      fail "the error's annotation: $(cat "$tmp/broken")"
+    # No such top is no finding of the design: one line naming the modules there are, exit 2.
+    expect_error "no module no_such_top in the design's files \(--top names it\); modules in these files: my_lirp" \
+      "$phongsim" lint lirp --rtl my_lirp.sv --top no_such_top --format github
+    # A file outside the current folder keeps its absolute path.
+    mkdir "$tmp/sub" && cd "$tmp/sub" || fail "cd $tmp/sub"
+    "$phongsim" lint lirp --rtl ../my_lirp.sv --top my_lirp --json "$tmp/outside.json" >/dev/null 2>&1
+    python3 -c 'import json, sys; f = json.load(open(sys.argv[1]))["findings"][0]; assert f["file"] == sys.argv[2], f' \
+      "$tmp/outside.json" "$(cd "$tmp" && pwd -P)/my_lirp.sv" ||
+      fail "a file outside the current folder is not shown absolute: $(cat "$tmp/outside.json")"
+    # The built-in design: clean, exit 0, no findings.
+    "$phongsim" lint lirp --json "$tmp/clean.json" --format github >"$tmp/clean" 2>&1 ||
+      fail "the built-in LIRP does not lint clean: $(cat "$tmp/clean")"
+    python3 -c 'import json, sys; j = json.load(open(sys.argv[1])); assert j["clean"] is True and j["findings"] == [] and j["warnings"] == j["errors"] == 0, j' \
+      "$tmp/clean.json" || fail "clean lint JSON: $(cat "$tmp/clean.json")"
+    expect_error "--format: xml not in \{text,gcc,github\}" "$phongsim" lint lirp --format xml
+    expect_error "--fail-on: info not in \{warning,error\}" "$phongsim" lint lirp --fail-on info
+    ;;
+
+  contract-json)
+    # Issue 46: `contract --json` is all a wrapper generator needs. tests/gen_contract_pack.py
+    # generates pack/unpack functions from it alone; per pipeline (one data port per field, a
+    # stateful one with 1-bit ports, a composed one with multi-field ports up to 228 bits) they
+    # must agree with the text header, round-trip every vector of `phongsim vectors` and every
+    # output row of `phongsim eval`, and give the very words the built-in RTL's ports carry in a
+    # co-simulation trace of the same vectors (seed 3).
+    for p in lirp kb shade_lyon; do
+      "$phongsim" contract "$p" --json "$tmp/$p.json" >"$tmp/$p.sv" || fail "contract $p --json"
+      python3 "$src/tests/gen_contract_pack.py" "$tmp/$p.json" >"$tmp/${p}_pack.py" ||
+        fail "gen_contract_pack.py $p"
+      "$phongsim" vectors "$p" --vectors 50 --seed 3 --out "$tmp/$p.in.csv" >/dev/null ||
+        fail "vectors $p"
+      "$phongsim" eval "$p" --in "$tmp/$p.in.csv" --out "$tmp/$p.out.csv" >/dev/null ||
+        fail "eval $p"
+      "$phongsim" cosim "$p" --vectors 50 --seed 3 --trace "$tmp/$p.vcd" --trace-window 1000 \
+        >"$tmp/cosim" 2>&1 || fail "cosim $p: $(cat "$tmp/cosim")"
+    done
+    # --json -: the document alone on stdout, the header on stderr, both as with a file.
+    "$phongsim" contract lirp --json - >"$tmp/stdout" 2>"$tmp/stderr" || fail "contract --json -"
+    cmp -s "$tmp/stdout" "$tmp/lirp.json" && cmp -s "$tmp/stderr" "$tmp/lirp.sv" ||
+      fail "contract --json -: $(head -c 300 "$tmp/stdout") / $(head -c 300 "$tmp/stderr")"
+    python3 - "$tmp" lirp kb shade_lyon <<'EOT' || fail "contract --json"
+import csv, importlib.util, json, os, re, sys
+tmp, pipelines = sys.argv[1], sys.argv[2:]
+
+def read_vcd(path):
+    """The top scope's signals just before each rising edge of clk_i (None: x or z)."""
+    ids, scope, samples, now = {}, [], [], {}
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if w[:1] == ["$scope"]:
+                scope.append(w[2])
+            elif w[:1] == ["$upscope"]:
+                scope.pop()
+            elif w[:1] == ["$var"] and len(scope) == 1:
+                ids.setdefault(w[3], []).append(w[4])
+            elif w[:1] == ["$enddefinitions"]:
+                break
+        for line in f:
+            if line[0] == "b":
+                bits, code = line[1:].split()
+            elif line[0] in "01xz":
+                bits, code = line[0], line[1:].strip()
+            else:
+                continue
+            value = None if "x" in bits or "z" in bits else int(bits, 2)
+            for name in ids.get(code, []):
+                if name == "clk_i" and value == 1 and now.get("clk_i") == 0:
+                    samples.append(dict(now))
+                now[name] = value
+    return samples
+
+def rows(path):
+    with open(path, newline="") as f:
+        return [{k: int(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+def width(f):
+    return f["msb"] - f["lsb"] + 1
+
+for p in pipelines:
+    j = json.load(open(os.path.join(tmp, f"{p}.json")))
+    header = open(os.path.join(tmp, f"{p}.sv")).read()
+    spec = importlib.util.spec_from_file_location(f"{p}_pack", os.path.join(tmp, f"{p}_pack.py"))
+    pack = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(pack)
+    assert j["command"] == "contract" and j["pipeline"] == p and j["config"] == "default", j
+    assert j["independent_vectors"] == (p != "kb"), (p, j["independent_vectors"])  # kb: state
+    # Parameters: the header's, in order; each value is what its meaning says.
+    params = re.findall(r"^  parameter int (\w+) = (-?\d+),?$", header, re.M)
+    assert [(n, int(v)) for n, v in params] == [(x["name"], x["value"]) for x in j["parameters"]], \
+        (p, params, j["parameters"])
+    for x in j["parameters"]:
+        if m := re.fullmatch(r"\[format\] \w+ = (S?)(\d+)\.(\d+) \(format word: .*\)", x["meaning"]):
+            assert x["value"] == (65536 if m[1] else 0) + int(m[2]) * 256 + int(m[3]), (p, x)
+        else:
+            assert re.fullmatch(rf"\[mode\] \w+ = \w+ \(encoding {x['value']}\)|\[param\] \w+ = "
+                                rf"{x['value']}", x["meaning"]), (p, x)
+    # Ports: the header's names, directions and widths, in order; a data port is as wide as its
+    # fields, packed from bit 0 up without gaps, each as the header's comment says.
+    declared = re.findall(r"^  (input|output) +logic (?:\[(\d+):0\] )?(\w+)[, ] *(?://\s*(.*))?$",
+                          header, re.M)
+    assert [(d, int(w) + 1 if w else 1, n) for d, w, n, _ in declared] == \
+        [(x["direction"], x["width"], x["name"]) for x in j["ports"]], (p, declared, j["ports"])
+    assert {x["name"]: x["role"] for x in j["ports"] if x["role"] != "data"} == {
+        "clk_i": "clock", "rst_ni": "reset", "in_valid_i": "valid", "in_ready_o": "ready",
+        "out_valid_o": "valid", "out_ready_i": "ready"}, (p, j["ports"])
+    data = [x for x in j["ports"] if x["role"] == "data"]
+    comments = [c for _, w, _, c in declared if w]
+    assert len(comments) == len(data) and all(x["fields"] is None for x in j["ports"] if x not in data)
+    for x, comment in zip(data, comments):
+        fields = x["fields"]
+        assert sum(width(f) for f in fields) == x["width"] and fields[0]["lsb"] == 0, (p, x)
+        assert all(b["lsb"] == a["msb"] + 1 for a, b in zip(fields, fields[1:])), (p, x)
+        for f in fields:
+            assert width(f) == f["signed"] + f["int_bits"] + f["frac_bits"], (p, f)
+            assert f["format"] == f["signed"] * 65536 + f["int_bits"] * 256 + f["frac_bits"], (p, f)
+            assert f["format_text"] == f"{'S' if f['signed'] else ''}{f['int_bits']}.{f['frac_bits']}", f
+        assert comment == ", ".join(f"{f['name']} {f['format_text']} [{f['msb']}:{f['lsb']}]"
+                                    for f in fields), (p, x["name"], comment)
+    # The handshake rules are the header's words.
+    prose = " ".join(l[3:] for l in header.splitlines() if l.startswith("// ")).lower()
+    assert all(rule.lower() in prose for rule in j["handshake"]), (p, j["handshake"], prose)
+    # Round trip: each vector through every input port, each output row through every output
+    # port; every field in exactly one port.
+    inputs = rows(os.path.join(tmp, f"{p}.in.csv"))
+    outputs = rows(os.path.join(tmp, f"{p}.out.csv"))
+    for direction, table in (("input", inputs), ("output", outputs)):
+        ports = [x for x in data if x["direction"] == direction]
+        carried = sorted(f["name"] for x in ports for f in x["fields"])
+        assert carried == sorted(table[0]), (p, direction, carried, list(table[0]))
+        for i, r in enumerate(table):
+            for x in ports:
+                word = pack.pack(x["name"], r)
+                assert 0 <= word < 1 << x["width"], (p, f"{direction} row {i}", x["name"], word)
+                want = {f["name"]: r[f["name"]] for f in x["fields"]}
+                got = pack.unpack(x["name"], word)
+                assert got == want, (p, f"{direction} row {i}", x["name"], want, got)
+    # The RTL: at each accepted input every input port carries the packed vector (the harness's
+    # in_vector indexes `phongsim vectors`' rows: same seed); the k-th output taken unpacks to
+    # eval's row k.
+    samples = read_vcd(os.path.join(tmp, f"{p}.vcd"))
+    accepted = [s for s in samples if s.get("in_accept") == 1]
+    taken = [s for s in samples if s.get("out_take") == 1]
+    assert accepted and taken, (p, len(samples), len(accepted), len(taken))
+    for s in accepted:
+        v = s["in_vector"]
+        for x in data:
+            if x["direction"] == "input":
+                assert s[x["name"]] == pack.pack(x["name"], inputs[v]), \
+                    (p, "seed 3 vector", v, x["name"], s[x["name"]], inputs[v])
+    for k, s in enumerate(taken):
+        for x in data:
+            if x["direction"] == "output":
+                want = {f["name"]: outputs[k][f["name"]] for f in x["fields"]}
+                got = pack.unpack(x["name"], s[x["name"]])
+                assert got == want, (p, "seed 3 output", k, x["name"], want, got)
+    print(f"ok: {p}: {len(j['parameters'])} parameters, {len(data)} data ports; {len(inputs)} "
+          f"vectors and {len(outputs)} outputs round-tripped; {len(accepted)} inputs and "
+          f"{len(taken)} outputs as the RTL's ports carry them")
+EOT
     ;;
 
   *)

@@ -1,16 +1,21 @@
 // The counting of RTL coverage points (sim/cosim/coverage.h) on Verilator-format keys: the user's
-// waivers (their file, what they leave out, stale and reached ones refused), the signals
-// Verilator counts no toggles of, and the lcov file whose figures are the counted ones.
+// waivers (their file, what they leave out, stale and reached ones refused), phongsim's own
+// waivers found by their markers in the RTL (following moved lines; a missing marker refused),
+// the signals Verilator counts no toggles of, and the lcov file whose figures are the counted
+// ones.
 #include "sim/cosim/coverage.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "base/file_util.h"
+#include "sim/cosim/coverpoints.h"
 #include "tests/error_of.h"
 #include "tests/temp_dir.h"
 
@@ -312,6 +317,217 @@ TEST(MovedSources, PointsFollowTheContent) {
   EXPECT_EQ(moved_sources(RtlPlugin{tmp.path() / "plugin" / "plugin.so", "k", ""}, design)
                 .count("/gone/my.sv"),
             0U);
+}
+
+// ---- phongsim's own waivers, anchored by markers in the RTL ----
+
+// A copy of the tree's `rel` (e.g. "rtl/common/fx_resize.sv") under `tmp`, at the same relative
+// path, with `edit` applied to its text.
+std::string copy_rtl(const testing::TempDir& tmp, const std::string& rel,
+                     const std::function<void(std::string&)>& edit = {}) {
+  std::string text = read_file(std::filesystem::path(PHONGSIM_SOURCE_DIR) / rel);
+  if (edit) edit(text);
+  std::filesystem::create_directories((tmp.path() / rel).parent_path());
+  return tmp.Write(rel, text).string();
+}
+
+// The line of file `path` holding `code` (the test finds the code by its text, as Verilator
+// would number it).
+int line_of(const std::string& path, const std::string& code) {
+  std::istringstream in(read_file(path));
+  int n = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++n;
+    if (line.find(code) != std::string::npos) return n;
+  }
+  ADD_FAILURE() << "no line of " << path << " holds " << code;
+  return 0;
+}
+
+// `text` with `lines` inserted before its line holding `code`.
+void insert_before(std::string& text, const std::string& code, const std::string& lines) {
+  const auto at = text.find(code);
+  ASSERT_NE(at, std::string::npos) << code;
+  text.insert(text.rfind('\n', at) + 1, lines);
+}
+
+// `text` without `what` (once).
+void erase_once(std::string& text, const std::string& what) {
+  const auto at = text.find(what);
+  ASSERT_NE(at, std::string::npos) << what;
+  text.erase(at, what.size());
+}
+
+// fx_resize's saturating always_comb as Verilator keys its points (5.006, as the coverage goal
+// runs record them): the block, the `wide > MaxV` arm (statements: its if line and the next),
+// the `wide < MinV` arm, the final else; the two saturation arms unreached.
+Points fx_resize_points(const std::string& path, const std::string& hier) {
+  const int block = line_of(path, "always_comb begin"), high = line_of(path, "if (wide > MaxV)"),
+            low = line_of(path, "if (wide < MinV)");
+  const auto span = [](int a, int b) { return fmt::format("{}-{}", a, b); };
+  return {{line_key(path, block, std::to_string(block), hier, "v_line/fx_resize"), 9},
+          {line_key(path, high, span(high, high + 1), hier), 0},
+          {line_key(path, low, span(low, low + 1), hier), 0},
+          {line_key(path, low, span(low + 2, low + 3), hier), 9}};
+}
+
+// The waived points as "FILE-END LINES INSTANCE: REASON".
+std::vector<std::string> waived_list(const CoverageSummary& s) {
+  std::vector<std::string> out;
+  for (const WaivedPoint& w : s.waived) {
+    out.push_back(fmt::format("{} {} {}: {}", std::filesystem::path(w.file).filename().string(),
+                              w.lines, w.instance, w.reason));
+  }
+  return out;
+}
+
+// A configuration's waivers name the RTL's markers (`// phongsim: waive saturate.low` on
+// fx_resize's `wide < MinV` arm), never a line: with lines inserted above the arms, the same
+// points are waived at their new lines. A marker removed, given twice, or renamed in the RTL is
+// an error naming the file and the marker, not a waiver of other code or of nothing.
+TEST(MarkerWaivers, FollowTheMarkedLineWhenItMoves) {
+  // kb's and quad's output stage: an accumulator clamped to [0, 1] into an output that holds 1
+  // saturates neither way, so both fx_resize arms of `u_value` are waived.
+  CoverpointSampler sampler;
+  const Clamp01Output output(sampler, fx::Format{true, 2, 12}, fx::Format{false, 1, 10},
+                             fx::Round::half_even);
+  ASSERT_EQ(sampler.line_waivers.size(), 2U);
+  const std::string hier = "top.kb_top.u_engine.u_value.u_rq.u_resize";
+  const auto count = [&](const Points& points) {
+    CoverageInputs in;
+    in.line_waivers = sampler.line_waivers;
+    return count_coverage_points(points, in);
+  };
+  const testing::TempDir before;
+  const std::string at = copy_rtl(before, "rtl/common/fx_resize.sv");
+  const CoverageSummary s = count(fx_resize_points(at, hier));
+  const int high = line_of(at, "if (wide > MaxV)"), low = line_of(at, "if (wide < MinV)");
+  EXPECT_EQ(s.line_waived, 2U);
+  EXPECT_EQ(s.line_points, 2U);
+  EXPECT_EQ(waived_list(s),
+            (std::vector<std::string>{fmt::format("fx_resize.sv {}-{} {}: {}", high, high + 1, hier,
+                                                  sampler.line_waivers[0].reason),
+                                      fmt::format("fx_resize.sv {}-{} {}: {}", low, low + 1, hier,
+                                                  sampler.line_waivers[1].reason)}));
+  // Three lines inserted above the always_comb move both arms down by three.
+  const testing::TempDir after;
+  const std::string moved = copy_rtl(after, "rtl/common/fx_resize.sv", [](std::string& t) {
+    insert_before(t, "always_comb begin", "    // one\n    // two\n    // three\n");
+  });
+  ASSERT_EQ(line_of(moved, "if (wide > MaxV)"), high + 3);
+  ASSERT_EQ(line_of(moved, "if (wide < MinV)"), low + 3);
+  const CoverageSummary m = count(fx_resize_points(moved, hier));
+  EXPECT_EQ(m.line_waived, 2U);
+  EXPECT_EQ(m.line_points, s.line_points);
+  EXPECT_EQ(m.line_hit, s.line_hit);
+  EXPECT_EQ(waived_list(m),
+            (std::vector<std::string>{fmt::format("fx_resize.sv {}-{} {}: {}", high + 3, high + 4,
+                                                  hier, sampler.line_waivers[0].reason),
+                                      fmt::format("fx_resize.sv {}-{} {}: {}", low + 3, low + 4,
+                                                  hier, sampler.line_waivers[1].reason)}));
+  // The marker removed, on a second line, or renamed: an error naming the file and the marker.
+  const auto error_with = [&](const std::function<void(std::string&)>& edit) {
+    const testing::TempDir tmp;
+    const std::string path = copy_rtl(tmp, "rtl/common/fx_resize.sv", edit);
+    std::string e = testing::ErrorOf([&] { (void)count(fx_resize_points(path, hier)); });
+    const auto p = e.find(path);
+    if (p != std::string::npos) e.replace(p, path.size(), "FILE");
+    return e;
+  };
+  EXPECT_EQ(error_with([](std::string& t) {
+              erase_once(t, "// phongsim: waive saturate.low");
+            }).rfind("FILE: phongsim's waiver marker 'saturate.low' is on no line (", 0),
+            0U);
+  EXPECT_EQ(error_with([](std::string& t) {
+              insert_before(t, "always_comb begin", "    // phongsim: waive saturate.high\n");
+            }).rfind("FILE: phongsim's waiver marker 'saturate.high' is on several lines (", 0),
+            0U);
+  EXPECT_EQ(error_with([](std::string& t) {
+              erase_once(t, "waive saturate.high");
+              t.insert(t.find("// phongsim: ", t.find("if (wide > MaxV)")) + 13,
+                       "waive saturate.higher");
+            }).rfind("FILE: phongsim's waiver marker 'saturate.high' is on no line (", 0),
+            0U);
+}
+
+// The user's recommended form (docs/cosim.md, "Waivers"): the same marker in their RTL, named by
+// a regex; it follows the line, and a removed marker makes the waiver stale.
+TEST(MarkerWaivers, UserRegexOnAMarker) {
+  const testing::TempDir tmp;
+  std::string text = kSource;
+  insert_before(text, "default: q = lo;", "    // a comment\n");
+  text.insert(text.find("default: q = lo;") + 16, "  // phongsim: waive no-default");
+  const std::string src = tmp.Write("my.sv", text).string();
+  const int at = line_of(src, "default: q = lo;");
+  ASSERT_EQ(at, 5);  // kSource's line 4, one line down
+  const Points points{{line_key(src, 3, "3", "top.t"), 5},
+                      {line_key(src, at, std::to_string(at), "top.t"), 0}};
+  CoverageInputs in;
+  in.user_waivers = {{"w:1", "my.sv", 0, 0, "phongsim: waive no-default\\b", "", "no default"}};
+  const CoverageSummary s = count_coverage_points(points, in);
+  ASSERT_EQ(s.waived.size(), 1U);
+  EXPECT_EQ(s.waived[0].lines, std::to_string(at));
+  tmp.Write("my.sv", kSource);
+  EXPECT_NE(testing::ErrorOf([&] { check_waivers(points, in.user_waivers); })
+                .find("w:1: the waiver 'my.sv /phongsim: waive no-default\\b/' matches no coverage "
+                      "point"),
+            std::string::npos);
+}
+
+// A region, `waive-begin NAME` on its first line and `waive-end NAME` on its last: quad's walker
+// waives the two narrowing compares (one-line ifs) as one region. Only points with statements
+// lie on a marker's lines: their implicit elses, on the same lines and reached, are counted. The
+// region follows its lines; without its end it is an error.
+TEST(MarkerWaivers, RegionFollowsItsLines) {
+  const LineWaiver waiver{R"(\.u_walker$)", "rtl/quad/quad_walker_core.sv", "narrow",
+                          "unrolled loop"};
+  const std::string hier = "top.quad_walker.u_walker";
+  const auto points_of = [&](const std::string& path) {
+    const int lower = line_of(path, "KindLower && 0 - q_ext[k] > lower"),
+              upper = line_of(path, "KindUpper && q_ext[k] < upper");
+    const auto l = [](int n) { return std::to_string(n); };
+    return Points{{line_key(path, lower - 1, l(lower - 1), hier, "v_line/q"), 3},  // the for
+                  {line_key(path, lower, l(lower), hier), 0},
+                  {line_key(path, lower, "", hier), 7},  // its implicit else: reached
+                  {line_key(path, upper, l(upper), hier), 0},
+                  {line_key(path, upper, "", hier), 7},
+                  {line_key(path, upper + 1, l(upper + 1), hier, "v_line/q"), 3}};
+  };
+  const auto count = [&](const Points& points) {
+    CoverageInputs in;
+    in.line_waivers = {waiver};
+    return count_coverage_points(points, in);
+  };
+  const testing::TempDir before, after, broken;
+  const std::string at = copy_rtl(before, "rtl/quad/quad_walker_core.sv");
+  const CoverageSummary s = count(points_of(at));
+  const int lower = line_of(at, "KindLower && 0 - q_ext[k] > lower");
+  EXPECT_EQ(s.line_waived, 2U);
+  EXPECT_EQ(s.line_points, 4U);
+  EXPECT_EQ(s.line_hit, 4U);
+  EXPECT_EQ(waived_list(s),
+            (std::vector<std::string>{
+                fmt::format("quad_walker_core.sv {} {}: unrolled loop", lower, hier),
+                fmt::format("quad_walker_core.sv {} {}: unrolled loop", lower + 1, hier)}));
+  const std::string moved = copy_rtl(after, "rtl/quad/quad_walker_core.sv", [](std::string& t) {
+    insert_before(t, "always_comb begin\n    lower", "  // one\n  // two\n");
+  });
+  const CoverageSummary m = count(points_of(moved));
+  EXPECT_EQ(m.line_waived, 2U);
+  EXPECT_EQ(m.line_hit, s.line_hit);
+  EXPECT_EQ(waived_list(m),
+            (std::vector<std::string>{
+                fmt::format("quad_walker_core.sv {} {}: unrolled loop", lower + 2, hier),
+                fmt::format("quad_walker_core.sv {} {}: unrolled loop", lower + 3, hier)}));
+  const std::string open = copy_rtl(broken, "rtl/quad/quad_walker_core.sv", [](std::string& t) {
+    erase_once(t, "  // phongsim: waive-end narrow");
+  });
+  const std::string e = testing::ErrorOf([&] { (void)count(points_of(open)); });
+  EXPECT_EQ(e.rfind(open + ": phongsim's waiver marker 'narrow' needs one waive-begin and one "
+                           "waive-end (waive-begin on 1 line(s) ",
+                    0),
+            0U)
+      << e;
 }
 
 }  // namespace

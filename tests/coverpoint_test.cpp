@@ -7,10 +7,12 @@
 
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "base/error.h"
+#include "base/file_util.h"
 #include "sim/cosim/coverage.h"
 #include "sim/cosim/coverpoints.h"
 #include "sim/cosim/stall.h"
@@ -82,26 +84,44 @@ TEST(Coverpoints, CountMergeAndFile) {
   EXPECT_EQ(Coverpoints::read(file).size(), 0U);  // none yet
 }
 
-// A line waiver leaves out the points it matches (file, first line of the statements, hierarchy)
-// while they are unreached, and makes a reached one an error naming its reason.
+// The line of the tree's rtl/common/fx_resize.sv holding `text` (its saturation compares are
+// found by their code, never by a line number), and a point of it as Verilator keys it: an if
+// arm at line `at` with statements S `at`-`at + 1`, in instance `hier`.
+int fx_resize_line(const std::string& text) {
+  std::istringstream in(
+      read_file(std::filesystem::path(PHONGSIM_SOURCE_DIR) / "rtl/common/fx_resize.sv"));
+  int n = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++n;
+    if (line.find(text) != std::string::npos) return n;
+  }
+  ADD_FAILURE() << "no line of fx_resize.sv holds " << text;
+  return 0;
+}
+
+std::string fx_resize_key(int at, const std::string& hier) {  // "\x01" "f": \x01f is one escape
+  return fmt::format(
+      "\x01page\x02v_line/fx_resize\x01"
+      "f\x02{}/rtl/common/fx_resize.sv\x01l\x02{}"
+      "\x01S\x02{}-{}\x01h\x02{}",
+      PHONGSIM_SOURCE_DIR, at, at, at + 1, hier);
+}
+
+// A line waiver leaves out the points it matches (file, the lines its RTL marker marks,
+// hierarchy) while they are unreached, and makes a reached one an error naming its reason.
 TEST(LineWaivers, LeaveOutUnreachedPointsAndFireWhenReached) {
-  const auto key = [](int line, const std::string& hier) {  // "\x01" "f": \x01f is one escape
-    return fmt::format(
-        "\x01page\x02v_line/fx_resize\x01"
-        "f\x02/src/rtl/common/fx_resize.sv\x01l\x02{}"
-        "\x01S\x02{}\x01h\x02{}",
-        line - 1, line, hier);
-  };
+  const int high = fx_resize_line("if (wide > MaxV)"), low = fx_resize_line("if (wide < MinV)");
   const std::vector<LineWaiver> waivers{
-      {R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81, "value.low: never negative"}};
-  std::map<std::string, std::uint64_t> points{{key(80, "top.q.g_channel[0].u_value.u"), 0},
-                                              {key(78, "top.q.g_channel[0].u_value.u"), 4},
-                                              {key(80, "top.q.u_other.u"), 0}};
+      fx_resize_saturation_waiver(R"(\.u_value\.)", "low", "value.low: never negative")};
+  std::map<std::string, std::uint64_t> points{
+      {fx_resize_key(low, "top.q.g_channel[0].u_value.u"), 0},
+      {fx_resize_key(high, "top.q.g_channel[0].u_value.u"), 4},
+      {fx_resize_key(low, "top.q.u_other.u"), 0}};
   const CoverageSummary s = count_coverage_points(points, waivers);
-  EXPECT_EQ(s.line_waived, 1U);  // the u_value point at 80; not line 78, not another instance
+  EXPECT_EQ(s.line_waived, 1U);  // the u_value low arm; not the high one, not another instance
   EXPECT_EQ(s.line_points, 2U);
   EXPECT_EQ(s.line_hit, 1U);
-  points[key(80, "top.q.g_channel[0].u_value.u")] = 1;
+  points[fx_resize_key(low, "top.q.g_channel[0].u_value.u")] = 1;
   const std::string e = testing::ErrorOf([&] { (void)count_coverage_points(points, waivers); });
   EXPECT_NE(e.find("is waived (value.low: never negative) but was reached"), std::string::npos)
       << e;
@@ -117,21 +137,15 @@ TEST(LineWaivers, LyonSharedNormalizationPoint) {
     const auto model = make_model(find_pipeline("lyon"), cfg);
     return find_pipeline("lyon").coverpoints(*model, cfg).line_waivers;
   };
-  const auto key = [](int line, const std::string& hier) {
-    return fmt::format(
-        "\x01page\x02v_line/fx_resize\x01"
-        "f\x02/src/rtl/common/fx_resize.sv\x01l\x02{}"
-        "\x01S\x02{}\x01h\x02{}",
-        line - 1, line, hier);
-  };
+  const int high = fx_resize_line("if (wide > MaxV)");
   const std::string shared = "top.lyon_top.u_core.*.g_approximate.u_g.u_resize";
-  const std::map<std::string, std::uint64_t> points{{key(78, shared), 0}};
+  const std::map<std::string, std::uint64_t> points{{fx_resize_key(high, shared), 0}};
   const auto halfway = waivers_of("configs/lyon/halfway.toml");
   EXPECT_EQ(count_coverage_points(points, halfway).line_waived, 1U);
   EXPECT_EQ(count_coverage_points(points, waivers_of("configs/lyon/default.toml")).line_waived, 0U);
   // One instance's point (not shared) is not waived by the shared waiver alone.
   const std::map<std::string, std::uint64_t> other{
-      {key(78, "top.lyon_top.u_core.*.g_approximate.u_q.u_resize"), 0}};
+      {fx_resize_key(high, "top.lyon_top.u_core.*.g_approximate.u_q.u_resize"), 0}};
   EXPECT_EQ(count_coverage_points(other, halfway).line_waived, 0U);
 }
 

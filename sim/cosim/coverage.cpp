@@ -48,6 +48,15 @@ std::string coverage_prefix(const fs::path& dir) {
   return (data / fmt::format("{}-{}-", now, getpid())).string();
 }
 
+LineWaiver fx_resize_saturation_waiver(std::string hier, std::string_view side,
+                                       std::string reason) {
+  if (side != "high" && side != "low") {
+    throw Error(fmt::format("fx_resize saturates high or low, not '{}'", side));
+  }
+  return {std::move(hier), "rtl/common/fx_resize.sv", fmt::format("saturate.{}", side),
+          std::move(reason)};
+}
+
 // ---- the user's waivers ----
 
 std::string UserWaiver::where() const {
@@ -223,71 +232,88 @@ bool names_file(const std::string& path, const std::string& file) {
          path.compare(path.size() - file.size(), file.size(), file) == 0;
 }
 
-// The configuration's waiver that leaves the point with key `key` out, or null.
-const LineWaiver* builtin_waiver_of(const std::string& key, std::span<const LineWaiver> waivers,
-                                    const std::vector<std::regex>& res) {
-  const std::string file = field(key, "f");
-  // The first line of the statements the point counts ("S=80-81": an if's arm; "l" is the if's
-  // own line, the same for its else arm, which may have no statements of its own and no S:
-  // never waived).
-  const std::string span = field(key, "S");
-  int line = 0;
-  try {
-    line = std::stoi(span);
-  } catch (const std::exception&) {
-    return nullptr;
+// A regex that matches `text` literally.
+std::string regex_literal(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (std::string_view(R"(\^$.|?*+()[]{}/)").find(c) != std::string_view::npos) out += '\\';
+    out += c;
   }
-  for (std::size_t i = 0; i < waivers.size(); ++i) {
-    const LineWaiver& w = waivers[i];
-    if (line >= w.first_line && line <= w.last_line && file.size() >= w.file.size() &&
-        file.compare(file.size() - w.file.size(), w.file.size(), w.file) == 0 &&
-        std::regex_search(field(key, "h"), res[i])) {
-      return &w;
-    }
-  }
-  return nullptr;
+  return out;
 }
 
-// The user's waivers compiled, and what each matched (for the stale check).
-struct UserMatcher {
+// The lines of `lines` (the text of source file `path`) that phongsim's marker `name` marks:
+// the line holding `phongsim: waive NAME`, or the lines from the one holding `phongsim:
+// waive-begin NAME` to the one holding `phongsim: waive-end NAME`. Error naming the file and
+// the marker when it is missing, on two lines, or a region is not closed.
+std::set<int> marked_lines(const std::vector<std::string>& lines, const std::string& path,
+                           const std::string& name) {
+  const std::regex re("phongsim:[ \\t]*waive(-begin|-end)?[ \\t]+" + regex_literal(name) +
+                      "(?![\\w.-])");
+  std::vector<int> at[3];  // the lines of `waive`, `waive-begin` and `waive-end`
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    std::smatch m;
+    if (!std::regex_search(lines[i], m, re)) continue;
+    at[m[1].str() == "-begin" ? 1 : m[1].str() == "-end" ? 2 : 0].push_back(int(i) + 1);
+  }
+  const auto fail = [&](const std::string& what) {
+    throw Error(fmt::format(
+        "{}: phongsim's waiver marker '{}' {} (a line waiver names the RTL's `// phongsim: "
+        "waive {}` on the waived line, or `waive-begin {}` ... `waive-end {}` around a region, "
+        "exactly once: put it back on the line its waiver means, or fix the waiver)",
+        path, name, what, name, name, name));
+  };
+  const auto where = [](const std::vector<int>& l) {
+    return fmt::format("{}", fmt::join(l, ", "));
+  };
+  const std::size_t one = at[0].size(), begin = at[1].size(), end = at[2].size();
+  if (one + begin + end == 0) fail("is on no line");
+  if (one > 1) fail("is on several lines (" + where(at[0]) + ")");
+  if (one == 1 && begin + end > 0) fail("marks a line and a region");
+  if (one == 1) return {at[0][0]};
+  if (begin != 1 || end != 1) {
+    fail(
+        fmt::format("needs one waive-begin and one waive-end (waive-begin on {} line(s) {}, "
+                    "waive-end on {} line(s) {})",
+                    begin, where(at[1]), end, where(at[2])));
+  }
+  if (at[2][0] < at[1][0]) fail("ends its region before it begins");
+  std::set<int> out;
+  for (int l = at[1][0]; l <= at[2][0]; ++l) out.insert(l);
+  return out;
+}
+
+// Every waiver, phongsim's own (LineWaiver, first) and the user's (UserWaiver), matched by one
+// rule: a waiver names lines of a source file (LINE..LAST, the lines a regex matches, the lines
+// the RTL's marker marks, or the whole file) and leaves out the points of matching instances
+// that lie on them; what each user's waiver matched, for the stale check.
+class WaiverMatcher {
+ public:
   struct Compiled {
-    const UserWaiver* w;
+    UserWaiver w;        // phongsim's as one: origin "", no lines nor pattern, instance `hier`
+    std::string marker;  // phongsim's: the RTL's marker; "": a user's waiver
     std::optional<std::regex> pattern, instance;
     std::set<std::string> files;        // Verilator paths of points in SOURCE
     bool pattern_matched_line = false;  // the pattern matched a line of one of them
     bool on_lines = false;              // a point lay on its lines (any instance)
     std::uint64_t points = 0;           // points it left out
   };
-  std::vector<Compiled> waivers;
-  std::map<std::pair<std::size_t, std::string>, std::set<int>> pattern_lines;  // (waiver, file)
 
-  explicit UserMatcher(std::span<const UserWaiver> ws) {
-    for (const UserWaiver& w : ws) {
-      Compiled c{&w, std::nullopt, std::nullopt, {}, false, false, 0};
+  WaiverMatcher(std::span<const LineWaiver> builtin, std::span<const UserWaiver> user) {
+    for (const LineWaiver& b : builtin) {
+      Compiled c;
+      c.w = {"", b.file, 0, 0, "", b.hier, b.reason};
+      c.marker = b.marker;
+      c.instance = compiled(b.hier, "phongsim's waiver of " + b.file, "the instance");
+      waivers_.push_back(std::move(c));
+    }
+    for (const UserWaiver& w : user) {
+      Compiled c;
+      c.w = w;
       if (!w.pattern.empty()) c.pattern = compiled(w.pattern, w.origin, "the pattern");
       if (!w.instance.empty()) c.instance = compiled(w.instance, w.origin, "the instance");
-      waivers.push_back(std::move(c));
+      waivers_.push_back(std::move(c));
     }
-  }
-
-  // The lines of `path` the pattern of waiver i matches (the file read once).
-  const std::set<int>& lines_of(std::size_t i, const std::string& path) {
-    const auto k = std::make_pair(i, path);
-    if (const auto it = pattern_lines.find(k); it != pattern_lines.end()) return it->second;
-    std::set<int>& lines = pattern_lines[k];
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-      throw Error(fmt::format("{}: cannot read {} to match /{}/ in it", waivers[i].w->origin, path,
-                              waivers[i].w->pattern));
-    }
-    std::istringstream in(read_file(path, "source file"));
-    int n = 0;
-    for (std::string line; std::getline(in, line);) {
-      ++n;
-      if (std::regex_search(line, *waivers[i].pattern)) lines.insert(n);
-    }
-    if (!lines.empty()) waivers[i].pattern_matched_line = true;
-    return lines;
   }
 
   // The first waiver that leaves out the line point `key`, or null. Every waiver that matches
@@ -296,18 +322,21 @@ struct UserMatcher {
     const std::string path = field(key, "f");
     std::optional<std::vector<int>> lines;
     const UserWaiver* first = nullptr;
-    for (std::size_t i = 0; i < waivers.size(); ++i) {
-      Compiled& c = waivers[i];
-      if (!names_file(path, c.w->file)) continue;
+    for (std::size_t i = 0; i < waivers_.size(); ++i) {
+      Compiled& c = waivers_[i];
+      if (!names_file(path, c.w.file)) continue;
       c.files.insert(path);
       if (!lines) lines = point_lines(key);
       bool on = false;
-      if (c.pattern) {
+      if (c.pattern || !c.marker.empty()) {
         const std::set<int>& match = lines_of(i, path);
-        on = std::any_of(lines->begin(), lines->end(), [&](int l) { return match.contains(l); });
-      } else if (c.w->first_line > 0) {
+        // phongsim's markers leave out statements only: an if's implicit else lies on the if's
+        // line, where a one-line `if (...) x = y;` carries the marker of its unreachable arm.
+        on = (c.marker.empty() || !field(key, "S").empty()) &&
+             std::any_of(lines->begin(), lines->end(), [&](int l) { return match.contains(l); });
+      } else if (c.w.first_line > 0) {
         on = std::any_of(lines->begin(), lines->end(),
-                         [&](int l) { return l >= c.w->first_line && l <= c.w->last_line; });
+                         [&](int l) { return l >= c.w.first_line && l <= c.w.last_line; });
       } else {
         on = true;
       }
@@ -315,16 +344,18 @@ struct UserMatcher {
       c.on_lines = true;
       if (c.instance && !std::regex_search(field(key, "h"), *c.instance)) continue;
       ++c.points;
-      if (first == nullptr) first = c.w;
+      if (first == nullptr) first = &c.w;
     }
     return first;
   }
 
-  // Error for the first waiver that left out no point, saying why.
+  // Error for the first of the user's waivers that left out no point, saying why. (phongsim's
+  // own need not match: a configuration waives each arm its formats rule out, and a module
+  // Verilator made one of for several instances has its points under a shared name.)
   void check_used() const {
-    for (const Compiled& c : waivers) {
-      if (c.points > 0) continue;
-      const UserWaiver& w = *c.w;
+    for (const Compiled& c : waivers_) {
+      if (c.points > 0 || !c.marker.empty()) continue;
+      const UserWaiver& w = c.w;
       std::string why;
       if (c.files.empty()) {
         why = fmt::format("no line or branch point is in a source file {}", w.file);
@@ -344,6 +375,43 @@ struct UserMatcher {
           w.origin, w.where(), why));
     }
   }
+
+ private:
+  // The lines of `path` waiver i's pattern or marker names (the file read once).
+  const std::set<int>& lines_of(std::size_t i, const std::string& path) {
+    const auto k = std::make_pair(i, path);
+    if (const auto it = lines_.find(k); it != lines_.end()) return it->second;
+    Compiled& c = waivers_[i];
+    auto text = sources_.find(path);
+    if (text == sources_.end()) {
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec)) {
+        throw Error(c.marker.empty()
+                        ? fmt::format("{}: cannot read {} to match /{}/ in it", c.w.origin, path,
+                                      c.w.pattern)
+                        : fmt::format("cannot read {} to find phongsim's waiver marker '{}' in it",
+                                      path, c.marker));
+      }
+      std::vector<std::string> lines;
+      std::istringstream in(read_file(path, "source file"));
+      for (std::string line; std::getline(in, line);) lines.push_back(std::move(line));
+      text = sources_.emplace(path, std::move(lines)).first;
+    }
+    std::set<int>& lines = lines_[k];
+    if (!c.marker.empty()) {
+      lines = marked_lines(text->second, path, c.marker);
+      return lines;
+    }
+    for (std::size_t n = 0; n < text->second.size(); ++n) {
+      if (std::regex_search(text->second[n], *c.pattern)) lines.insert(int(n) + 1);
+    }
+    if (!lines.empty()) c.pattern_matched_line = true;
+    return lines;
+  }
+
+  std::vector<Compiled> waivers_;
+  std::map<std::string, std::vector<std::string>> sources_;             // path -> lines
+  std::map<std::pair<std::size_t, std::string>, std::set<int>> lines_;  // (waiver, path)
 };
 
 // Whether `text` matches the glob `pattern` ('*': any characters), as Verilator names the
@@ -444,9 +512,7 @@ std::vector<UncountedSignal> uncounted_signals(const std::map<std::string, std::
 CoverageSummary count(const std::map<std::string, std::uint64_t>& points,
                       const CoverageInputs& inputs, std::set<std::string>* waived_keys) {
   CoverageSummary s;
-  std::vector<std::regex> res;
-  for (const LineWaiver& w : inputs.line_waivers) res.emplace_back(w.hier);
-  UserMatcher user(inputs.user_waivers);
+  WaiverMatcher matcher(inputs.line_waivers, inputs.user_waivers);
   for (const auto& [key, count] : points) {
     if (is_toggle(key)) {
       ++s.toggle_points;
@@ -456,13 +522,9 @@ CoverageSummary count(const std::map<std::string, std::uint64_t>& points,
     if (!is_line(key)) continue;
     std::string reason, waiver;
     bool waived = false;
-    if (const LineWaiver* w = builtin_waiver_of(key, inputs.line_waivers, res)) {
+    if (const UserWaiver* w = matcher.waiver_of(key)) {
       reason = w->reason;
-      waived = true;
-    }
-    if (const UserWaiver* u = user.waiver_of(key); u != nullptr && !waived) {
-      reason = u->reason;
-      waiver = u->origin;
+      waiver = w->origin;  // "" for phongsim's own
       waived = true;
     }
     if (waived) {
@@ -481,7 +543,7 @@ CoverageSummary count(const std::map<std::string, std::uint64_t>& points,
     ++s.line_points;
     s.line_hit += count > 0 ? 1 : 0;
   }
-  user.check_used();
+  matcher.check_used();
   if (!inputs.signals.empty() && s.toggles_measured()) {
     s.signals_checked = true;
     s.not_toggled = uncounted_signals(points, inputs.signals);
@@ -657,11 +719,11 @@ std::map<std::string, std::uint64_t> relocated(const std::map<std::string, std::
 
 void check_waivers(const std::map<std::string, std::uint64_t>& points,
                    std::span<const UserWaiver> waivers) {
-  UserMatcher user(waivers);
+  WaiverMatcher matcher({}, waivers);
   for (const auto& [key, count] : points) {
-    if (is_line(key)) (void)user.waiver_of(key);
+    if (is_line(key)) (void)matcher.waiver_of(key);
   }
-  user.check_used();
+  matcher.check_used();
 }
 
 CoverageSummary count_coverage_points(const std::map<std::string, std::uint64_t>& points,

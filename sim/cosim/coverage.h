@@ -12,6 +12,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sim/cosim/rtl_plugin.h"
@@ -20,19 +21,33 @@
 namespace phongsim {
 
 // Line points that cannot be reached, left out of the line figures: the points of `file` (the
-// path's end, e.g. "rtl/common/fx_resize.sv") whose statements start at lines first..last
-// (Verilator's S field: an if's arm starts at its first statement; a point without statements
-// is never waived) in every instance whose
-// hierarchy matches `hier` (an ECMAScript regex searched in Verilator's "top.lyon_top...." name),
-// with the reason. The functional coverpoints name them (CoverpointSampler::line_waivers): an
-// fx_resize saturation arm of a requantization whose saturation is waived.
+// path's end, e.g. "rtl/common/fx_resize.sv") whose statements (Verilator's S field; a point
+// without statements, an if's implicit else, is never waived) lie on the lines the RTL marks
+// `marker`, in every instance whose hierarchy matches `hier` (an ECMAScript regex searched in
+// Verilator's "top.lyon_top...." name), with the reason. The functional coverpoints name them
+// (CoverpointSampler::line_waivers): an fx_resize saturation arm of a requantization whose
+// saturation is waived.
+//
+// The RTL marks a line with the comment `// phongsim: waive MARKER` on it, and a region with
+// `// phongsim: waive-begin MARKER` on its first line and `// phongsim: waive-end MARKER` on its
+// last; the counting finds the marker in the file the points name, so a waiver follows its code
+// when lines move and no C++ names a line. A marker missing from the file, on two lines, or a
+// region without its end is an error naming the file and the marker (when the points are
+// counted, wherever the design has a point in the file). The reason stays here, not in the
+// marker: one marked line (fx_resize's saturation arm) serves every requantization, each waived
+// for a reason its configuration's formats give.
 struct LineWaiver {
   std::string hier;
   std::string file;
-  int first_line = 0;
-  int last_line = 0;
+  std::string marker;
   std::string reason;
 };
+
+// A waiver of the saturation arm on `side` ("high": `wide > MaxV`, "low": `wide < MinV`) of
+// rtl/common/fx_resize.sv (every fx_rq's requantization), marked there `saturate.high` and
+// `saturate.low`, in the instances `hier`.
+[[nodiscard]] LineWaiver fx_resize_saturation_waiver(std::string hier, std::string_view side,
+                                                     std::string reason);
 
 // A waiver of the user's (`cosim --waivers FILE`, docs/cosim.md "Waivers"), one line of the file:
 //
@@ -45,7 +60,8 @@ struct LineWaiver {
 // arm's or case item's body), a point without statements (an if's implicit else) on its `if`'s
 // line. @INSTANCE (a regex searched in Verilator's hierarchy, "top.my_top.u_x") narrows it to
 // some instances. A waiver that leaves out no point, and a waived point that was reached, are
-// errors naming the waiver's FILE:LINE.
+// errors naming the waiver's FILE:LINE. The recommended REGEX is a marker like phongsim's own
+// (LineWaiver) on the waived statement's line: `/phongsim: waive NAME\b/`.
 struct UserWaiver {
   std::string origin;  // "waivers.txt:3": where it is written, for messages and the report
   std::string file;    // SOURCE

@@ -196,14 +196,13 @@ Clamp01Output::Clamp01Output(CoverpointSampler& sampler, fx::Format acc, fx::For
   if (fx::resize_side(top, acc, out, round) > 0) {
     value_high_ = sampler.points.declare("value.high");
   } else {
-    sampler.line_waivers.push_back(
-        {R"(\.u_value\.)", "rtl/common/fx_resize.sv", 78, 79,
-         "value.high: the accumulator clamped to [0, 1] fits " + out.str()});
+    sampler.line_waivers.push_back(fx_resize_saturation_waiver(
+        R"(\.u_value\.)", "high",
+        "value.high: the accumulator clamped to [0, 1] fits " + out.str()));
   }
   value_inside_ = sampler.points.declare("value.inside");
-  sampler.line_waivers.push_back(
-      {R"(\.u_value\.)", "rtl/common/fx_resize.sv", 80, 81,
-       "value.low: the accumulator clamped to [0, 1] is never negative"});
+  sampler.line_waivers.push_back(fx_resize_saturation_waiver(
+      R"(\.u_value\.)", "low", "value.low: the accumulator clamped to [0, 1] is never negative"));
 }
 
 void Clamp01Output::hit(Coverpoints& points, std::int64_t acc_raw) const {

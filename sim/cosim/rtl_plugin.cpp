@@ -41,15 +41,19 @@ const std::vector<std::string> kVerilatorFlagsXRandom = {
 // Everything Verilator is given besides the sources and the include folders: the defaults, the
 // variant's, and $PHONGSIM_VERILATOR_FLAGS (sim/cosim/rtl_flags.h; how the defaults were chosen is
 // in docs/performance.md).
-std::vector<std::string> verilator_flags(const RtlDesign& d) {
-  std::vector<std::string> flags =
-      d.x_init == XInit::random ? kVerilatorFlagsXRandom : kVerilatorFlags;
+std::vector<std::string> verilator_flags(bool x_random, bool coverage, bool coverage_toggle,
+                                         const std::vector<std::string>& extra) {
+  std::vector<std::string> flags = x_random ? kVerilatorFlagsXRandom : kVerilatorFlags;
   // The coverage variant: Verilator's line (and branch) points, and toggle points if asked.
-  if (d.coverage) flags.emplace_back("--coverage-line");
-  if (d.coverage && d.coverage_toggle) flags.emplace_back("--coverage-toggle");
-  const std::vector<std::string> extra = verilator_env_flags();
+  if (coverage) flags.emplace_back("--coverage-line");
+  if (coverage && coverage_toggle) flags.emplace_back("--coverage-toggle");
   flags.insert(flags.end(), extra.begin(), extra.end());
   return flags;
+}
+
+std::vector<std::string> verilator_flags(const RtlDesign& d) {
+  return verilator_flags(d.x_init == XInit::random, d.coverage, d.coverage_toggle,
+                         verilator_env_flags());
 }
 
 // The first line a tool prints for --version, once per process.
@@ -209,7 +213,8 @@ Keyed key_of(const RtlDesign& d) {
   for (const fs::path& f : d.files) k.files.push_back(hash_file(f));
   ContentHash h;
   h.add(fmt::format("phongsim rtl plugin, abi {}", kRtlPluginAbi));
-  h.add(runtime_key());
+  const std::string tools = runtime_key();
+  h.add(tools);
   const std::vector<std::string> flags = verilator_flags(d);
   for (const auto& f : flags) h.add(f);
   h.add(d.top);
@@ -223,27 +228,38 @@ Keyed key_of(const RtlDesign& d) {
   }
   // The defines, and the include folders' order: how many are given, which file is in which.
   for (const std::string& def : d.defines) h.add("define " + def);
+  std::string layout = fmt::format("{} given;", d.include_dirs.size());
   h.add(fmt::format("include folders given: {}", d.include_dirs.size()));
   const std::vector<fs::path> dirs = rtl_include_dirs(d.include_dirs, d.files);
   for (const HashedFile& f : k.files) {
-    h.add(std::to_string(std::find(dirs.begin(), dirs.end(), f.path.parent_path()) - dirs.begin()));
+    const std::string at =
+        std::to_string(std::find(dirs.begin(), dirs.end(), f.path.parent_path()) - dirs.begin());
+    h.add(at);
+    layout += " " + at;
   }
+  ContentHash code;  // phongsim's side of the plugin
   for (const fs::path& header : adapter_headers()) {
     h.add(header.string());
     h.add(read_file(include_root() / header));
+    code.add(header.string());
+    code.add(read_file(include_root() / header));
   }
   // The key covers the adapter too; its text embeds the record, so hash what precedes it.
-  h.add(adapter_source(d, ""));
+  const std::string adapter = adapter_source(d, "");
+  h.add(adapter);
+  code.add(adapter);
   k.base = h.hex();
   const std::vector<std::string> extra = verilator_env_flags();
-  k.head =
-      fmt::format("base {}\nname {}\ntop {}\ngflags {}\n{}{}{}{}", k.base, d.name, d.top, gflags,
-                  d.x_init == XInit::random ? "x_init random\n" : "",
-                  !d.coverage         ? ""
-                  : d.coverage_toggle ? "coverage line toggle\n"
-                                      : "coverage line\n",
-                  extra.empty() ? "" : fmt::format("verilator_extra {}\n", fmt::join(extra, " ")),
-                  ports_text(d));
+  // What the base covers besides the files and the flags, each on its own, so that a rebuild
+  // can say which part changed (changed_since_last_build).
+  k.head = fmt::format(
+      "base {}\nname {}\ntop {}\ngflags {}\ntools {}\ncode {}\nlayout {}\n{}{}{}{}", k.base, d.name,
+      d.top, gflags, tools, code.hex(), layout, d.x_init == XInit::random ? "x_init random\n" : "",
+      !d.coverage         ? ""
+      : d.coverage_toggle ? "coverage line toggle\n"
+                          : "coverage line\n",
+      extra.empty() ? "" : fmt::format("verilator_extra {}\n", fmt::join(extra, " ")),
+      ports_text(d));
   for (const HashedFile& f : k.files)
     k.head += fmt::format("file {} {}\n", f.hash, f.path.string());
   for (std::size_t i = 0; i < dirs.size(); ++i) {
@@ -267,6 +283,47 @@ std::optional<IncludedFile> parse_include(const std::string& rest) {
   if (rel.empty() || rel.front() != ' ' || inc.hash.size() != 64) return std::nullopt;
   inc.rel = rel.substr(1);
   return inc;
+}
+
+// A plugin's record (`origin`, for messages) as PluginSources: the files and included files
+// where the build found them, or, for a build of `now`, where `now` finds them (the record lists
+// the design's files in its order, and each included file below one of its include folders).
+PluginSources record_sources(const std::string& info, const RtlDesign* now,
+                             const fs::path& origin) {
+  PluginSources s;
+  s.key = info_field(info, "key");
+  std::map<int, fs::path> dirs;
+  for (const std::string& line : info_lines(info, "incdir")) {
+    const auto at = line.find(' ');
+    dirs[std::stoi(line.substr(0, at))] = line.substr(at + 1);
+  }
+  if (now != nullptr) {
+    const std::vector<fs::path> found = rtl_include_dirs(now->include_dirs, now->files);
+    dirs.clear();
+    for (std::size_t i = 0; i < found.size(); ++i) dirs[static_cast<int>(i)] = found[i];
+  }
+  for (const std::string& line : info_lines(info, "file")) {
+    const auto at = line.find(' ');
+    const std::size_t i = s.files.size();
+    s.files.push_back(
+        {now != nullptr && i < now->files.size() ? now->files[i] : fs::path(line.substr(at + 1)),
+         line.substr(0, at)});
+  }
+  for (const std::string& line : info_lines(info, "include")) {
+    const auto inc = parse_include(line);
+    if (!inc || (inc->dir >= 0 && !dirs.contains(inc->dir))) {
+      throw Error(
+          fmt::format("{}: unreadable record of an included file; rebuild it", origin.string()));
+    }
+    s.includes.push_back({inc->dir < 0 ? inc->rel : dirs[inc->dir] / inc->rel, inc->hash});
+  }
+  std::vector<std::string> extra;
+  std::istringstream words(info_field(info, "verilator_extra"));
+  for (std::string w; words >> w;) extra.push_back(w);
+  const std::string coverage = info_field(info, "coverage");
+  s.flags = verilator_flags(info_field(info, "x_init") == "random", !coverage.empty(),
+                            coverage.find("toggle") != std::string::npos, extra);
+  return s;
 }
 
 // The full key: the base and every included file (where it is found, and its content).
@@ -452,9 +509,20 @@ std::string changed_since_last_build(const RtlDesign& d, const Keyed& k) {
       return fmt::format("PHONGSIM_VERILATOR_FLAGS changed: now \"{}\"",
                          info_field(k.head, "verilator_extra"));
     }
-    return "phongsim's plugin code or the tools changed";
+    const auto differs = [&](std::string_view field) {
+      return info_field(same_files, field) != info_field(k.head, field);
+    };
+    if (info_field(same_files, "tools").empty()) {  // recorded before the parts were
+      return "phongsim's plugin code or the tools changed (the earlier build does not say which)";
+    }
+    if (differs("tools")) return "Verilator, the C++ compiler or PhongsimRtl.cmake changed";
+    if (differs("code")) return "phongsim's plugin code changed";
+    if (differs("layout")) {
+      return "the same files, but other include folders: -I, +incdir+ or the files' own";
+    }
+    return "its ports changed";
   }
-  if (previous.empty()) return "first build of these parameters";
+  if (previous.empty()) return "first build of this top with these parameters";
   const std::set<std::string> before = info_files(previous);
   std::set<std::string> before_names;
   for (const std::string& f : before) before_names.insert(f.substr(f.find(' ') + 1));
@@ -486,9 +554,10 @@ std::map<std::string, int> declared_ports(const RtlDesign& d, const fs::path& he
   return widths;
 }
 
-// Verilator's words about a design it cannot read: a module defined twice named with both files,
-// else its first error line.
+// Verilator's words about a design it cannot read: a missing top with the modules there are, a
+// module defined twice named with both files, else its first error line.
 std::string verilator_problem(const RtlDesign& d, const std::string& out, int exit_code) {
+  if (std::string top = missing_top_problem(d, out); !top.empty()) return top;
   static const std::regex moddup(
       R"(%Error-MODDUP: ([^\n]*?):(\d+):\d+: Duplicate declaration of module: '([^']*)'[\s\S]*?\n\s*([^\n]*?):(\d+):\d+: \.\.\. Location of original declaration)");
   std::smatch m;
@@ -844,6 +913,33 @@ std::vector<std::string> rtl_source_flags(const RtlDesign& d) {
   return flags;
 }
 
+std::string missing_top_problem(const RtlDesign& d, std::string_view tool_output) {
+  const bool missing =
+      tool_output.find(fmt::format("--top-module '{}' was not found", d.top)) !=
+          std::string_view::npos ||
+      tool_output.find(fmt::format("Module `{}' not found", d.top)) != std::string_view::npos ||
+      tool_output.find(fmt::format("Module `\\{}' not found", d.top)) != std::string_view::npos;
+  if (!missing) return "";
+  static const std::regex declares(
+      R"(^\s*(?:macromodule|module)\s+(?:automatic\s+|static\s+)?([A-Za-z_]\w*))");
+  std::vector<std::string> modules;
+  for (const fs::path& f : d.files) {
+    std::error_code ec;
+    if (!fs::is_regular_file(f, ec)) continue;
+    std::istringstream lines(read_file(f));
+    std::smatch m;
+    for (std::string line; std::getline(lines, line);) {
+      if (std::regex_search(line, m, declares)) modules.push_back(m[1]);
+    }
+  }
+  return fmt::format(
+      "no module {} in the design's files ({}); {}", d.top,
+      d.top == d.builtin_top ? fmt::format("--top defaults to {}, the built-in design's top", d.top)
+                             : "--top names it",
+      modules.empty() ? std::string("the files declare no module")
+                      : fmt::format("modules in these files: {}", fmt::join(modules, ", ")));
+}
+
 std::vector<fs::path> rtl_files(std::span<const fs::path> paths) {
   std::vector<fs::path> files;
   for (const fs::path& p : paths) {
@@ -950,7 +1046,8 @@ std::vector<RtlPlugin> build_rtl(std::span<const RtlDesign> designs,
     built_as[i] = pending.size();
     pending.push_back(prepare(designs[i], std::move(k), *models[i]));
     if (log != nullptr) {
-      fmt::print(log, "phongsim: Verilating {} ({}; cached in {})\n", designs[i].name, why,
+      fmt::print(log, "phongsim: Verilating {}{} ({}; cached in {})\n", designs[i].name,
+                 designs[i].config.empty() ? "" : "/" + designs[i].config, why,
                  rtl_cache_dir().string());
       std::fflush(log);
     }
@@ -1027,36 +1124,28 @@ std::shared_ptr<RtlLibrary> RtlLibrary::open_file(const fs::path& path, const Rt
     }
   }
   // Every file it was compiled from, where it was then, must hold the same bytes now.
-  std::vector<std::pair<std::string, fs::path>> sources;
-  for (const std::string& line : info_lines(info, "file")) {
-    const auto at = line.find(' ');
-    sources.emplace_back(line.substr(0, at), line.substr(at + 1));
-  }
-  std::map<int, fs::path> dirs;
-  for (const std::string& line : info_lines(info, "incdir")) {
-    const auto at = line.find(' ');
-    dirs[std::stoi(line.substr(0, at))] = line.substr(at + 1);
-  }
-  for (const std::string& line : info_lines(info, "include")) {
-    const auto inc = parse_include(line);
-    if (!inc || (inc->dir >= 0 && !dirs.contains(inc->dir))) {
-      throw Error(
-          fmt::format("{}: unreadable record of an included file; rebuild it", path.string()));
-    }
-    sources.emplace_back(inc->hash, inc->dir < 0 ? inc->rel : dirs[inc->dir] / inc->rel);
-  }
-  for (const auto& [hash, file] : sources) {
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec) || file_hash(file) != hash) {
-      throw Error(
-          fmt::format("{} was built from an older {} (changed or missing since); rebuild it",
-                      path.string(), file.string()));
+  const PluginSources recorded = record_sources(info, nullptr, path);
+  for (const auto& list : {recorded.files, recorded.includes}) {
+    for (const SourceHash& f : list) {
+      std::error_code ec;
+      if (!fs::is_regular_file(f.path, ec) || file_hash(f.path) != f.sha256) {
+        throw Error(
+            fmt::format("{} was built from an older {} (changed or missing since); rebuild it",
+                        path.string(), f.path.string()));
+      }
     }
   }
   return lib;
 }
 
 std::string RtlLibrary::verilator_extra() const { return info_field(info_(), "verilator_extra"); }
+
+PluginSources RtlLibrary::sources() const { return record_sources(info_(), nullptr, path_); }
+
+PluginSources plugin_sources(const RtlPlugin& plugin, const RtlDesign& design) {
+  const fs::path info = plugin.path.parent_path() / "info.txt";
+  return record_sources(read_file(info), &design, info);
+}
 
 RtlLibrary::~RtlLibrary() {
   crash_.reset();

@@ -59,6 +59,8 @@ struct RtlDesign {
   // multiply the Verilated C++ (up to 30x for shade_quad), so its build and run time.
   bool coverage = false;
   bool coverage_toggle = true;
+  std::string builtin_top;  // the pipeline's own top (what --top defaults to), for messages
+  std::string config;       // its configuration's name, for progress lines
 };
 
 // "-GPFmt=65802 -GAFmt=266 ...": the parameters as Verilator takes them.
@@ -74,6 +76,11 @@ struct RtlDesign {
 // does not exist, a file that is not .sv/.v, or no files at all.
 [[nodiscard]] std::vector<std::filesystem::path> rtl_files(
     std::span<const std::filesystem::path> paths);
+
+// When `tool_output` (Verilator's or Yosys's) says the design's top is not in its files, one
+// line naming the modules the files declare and --top; else "".
+[[nodiscard]] std::string missing_top_problem(const RtlDesign& design,
+                                              std::string_view tool_output);
 
 // $PHONGSIM_CACHE, else <build tree>/rtl-cache.
 [[nodiscard]] std::filesystem::path rtl_cache_dir();
@@ -91,6 +98,25 @@ struct RtlPlugin {
   std::string key;
   std::string origin;  // "cached", "built now"
 };
+
+// A file a plugin was built from, and the SHA-256 of the bytes Verilator read.
+struct SourceHash {
+  std::filesystem::path path;
+  std::string sha256;
+};
+
+// What a plugin was built from, as its record says.
+struct PluginSources {
+  std::string key;
+  std::vector<SourceHash> files;     // the design's files, in compile order
+  std::vector<SourceHash> includes;  // the files they `include
+  // Verilator's flags besides the sources, include folders, defines and -G parameters.
+  std::vector<std::string> flags;
+};
+
+// The record of `plugin`, a cached build of `design`, with the paths where `design` finds its
+// files now (a cached build may come from another copy of the same files).
+[[nodiscard]] PluginSources plugin_sources(const RtlPlugin& plugin, const RtlDesign& design);
 
 // The plugin of `design` (its fields' widths from `model`): from the cache, or Verilated now
 // (progress on `log`), or under RtlBuild::never an Error saying how to build it.
@@ -134,6 +160,8 @@ class RtlLibrary : public std::enable_shared_from_this<RtlLibrary> {
   [[nodiscard]] bool x_random() const { return x_seed_ != nullptr; }
   // The $PHONGSIM_VERILATOR_FLAGS it was built with ("" for none).
   [[nodiscard]] std::string verilator_extra() const;
+  // Its record, with the paths of the build.
+  [[nodiscard]] PluginSources sources() const;
 
  private:
   RtlLibrary() = default;

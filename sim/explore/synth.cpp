@@ -152,10 +152,14 @@ void log_line(std::FILE* log, const std::string& text, std::chrono::steady_clock
 }
 
 void run_yosys(const std::string& script, const fs::path& log_path, const std::string& label,
-               const std::string& top) {
+               const RtlDesign& src) {
+  const std::string& top = src.top;
   const auto r = run_process({"yosys", "-q", "-p", script}, log_path);
   if (r.exit_code == 0) return;
   const std::string line = last_error_line(read_file(log_path));
+  if (const std::string missing = missing_top_problem(src, line); !missing.empty()) {
+    throw Error(fmt::format("{}: {}", label, missing));
+  }
   if (line.find("Assertion failed") != std::string::npos &&
       (line.find("dlatch") != std::string::npos || line.find("DLATCH") != std::string::npos)) {
     throw Error(fmt::format("{}: the RTL of {} has latches (yosys: {})", label, top, line));
@@ -184,7 +188,7 @@ void run_generic(const RtlDesign& src, const std::string& chparam, const fs::pat
                  const std::string& label, SynthResult& r, std::FILE* log) {
   const auto t0 = std::chrono::steady_clock::now();
   run_yosys(read_script(src, chparam, "") + generic_script(src.top, plain(dir)),
-            dir / "yosys-generic.log", label, src.top);
+            dir / "yosys-generic.log", label, src);
   try {
     const auto generic = read_json(dir / "generic.json");
     r.cells = stat_module(generic, src.top).at("num_cells").get<std::int64_t>();
@@ -289,11 +293,11 @@ void run_ice40(const RtlDesign& src, const std::string& chparam, const fs::path&
                const std::string& label, SynthResult& r, std::FILE* log) {
   auto t0 = std::chrono::steady_clock::now();
   run_yosys(read_script(src, chparam, "") + ports_script(src.top, plain(dir)),
-            dir / "yosys-ports.log", label, src.top);
+            dir / "yosys-ports.log", label, src);
   const fs::path wrap = dir / "wrap.v";
   std::ofstream(wrap) << wrapper(src.top, read_ports(dir / "ports.txt", src.top));
   run_yosys(read_script(src, chparam, quoted(wrap)) + ice40_script(src.top, plain(dir)),
-            dir / "yosys-ice40.log", label, src.top);
+            dir / "yosys-ice40.log", label, src);
   try {
     const auto stat = read_json(dir / "ice40-stat.json");
     const auto& top = stat_module(stat, src.top);
@@ -690,7 +694,7 @@ void check_synthesizable(const RtlDesign& design, const std::string& label) {
                 fmt::format("synth -top {0}; check -assert; select -assert-none t:$*dlatch* "
                             "t:$_DLATCH*",
                             design.top),
-            tmp.path() / "yosys-check.log", label, design.top);
+            tmp.path() / "yosys-check.log", label, design);
 }
 
 }  // namespace phongsim

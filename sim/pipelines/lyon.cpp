@@ -540,16 +540,13 @@ std::string rtl_instance(const std::string& point) {
 }
 
 // For outcome `name` of a requantization ("n.z.low", "dd.high"): the saturation arm of its
-// fx_resize (rtl/common/fx_resize.sv: `wide > MaxV` at line 78, `wide < MinV` at 80) as an RTL
-// line waiver.
+// fx_resize (`wide > MaxV` or `wide < MinV`, marked in the RTL) as an RTL line waiver.
 void waive_line(CoverpointSampler& c, const std::string& name, const std::string& reason) {
   const auto dot = name.rfind('.');
   const std::string point = name.substr(0, dot), side = name.substr(dot + 1);
   const std::string instance = rtl_instance(point);
   if (instance.empty() || (side != "low" && side != "high")) return;
-  const int line = side == "high" ? 78 : 80;
-  c.line_waivers.push_back(
-      {instance, "rtl/common/fx_resize.sv", line, line + 1, name + ": " + reason});
+  c.line_waivers.push_back(fx_resize_saturation_waiver(instance, side, name + ": " + reason));
 }
 
 }  // namespace
@@ -574,11 +571,11 @@ void waive_shared_norm_lines(CoverpointSampler& c) {
     if (name.rfind("n.", 0) != 0) continue;
     const auto h =
         std::find_if(c.line_waivers.begin(), c.line_waivers.end(), [&](const LineWaiver& w) {
-          return name_of(w) == "h" + name && w.first_line == n.first_line;
+          return name_of(w) == "h" + name && w.file == n.file && w.marker == n.marker;
         });
     const std::string prefix = R"(\.u_norm_n\..*)";
     if (h == c.line_waivers.end() || n.hier.rfind(prefix, 0) != 0) continue;
-    shared.push_back({R"(\.\*.*)" + n.hier.substr(prefix.size()), n.file, n.first_line, n.last_line,
+    shared.push_back({R"(\.\*.*)" + n.hier.substr(prefix.size()), n.file, n.marker,
                       fmt::format("{} and h{} (one point for both)", n.reason, name)});
   }
   c.line_waivers.insert(c.line_waivers.end(), shared.begin(), shared.end());

@@ -56,7 +56,9 @@ RtlDesign rtl_design(const PipelineInfo& pipeline, const Config& cfg,
                      std::vector<std::filesystem::path> files, std::string top) {
   RtlDesign d;
   d.name = std::string(pipeline.name);
-  d.top = top.empty() ? std::string(pipeline.top) : std::move(top);
+  d.builtin_top = std::string(pipeline.top);
+  d.config = cfg.name();
+  d.top = top.empty() ? d.builtin_top : std::move(top);
   if (files.empty()) {
     for (const auto f : pipeline.rtl_files) files.push_back(data_root() / f);
   }

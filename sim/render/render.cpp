@@ -8,6 +8,7 @@
 #include <ctime>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "base/error.h"
 #include "base/paths.h"
@@ -534,6 +535,15 @@ RenderResult render(const RenderOptions& o, const RenderProgress& progress) {
           "names one, --backend rtl; `phongsim render --list-methods`)",
           o.rtl_pipeline));
     }
+  }
+  if (!o.no_build) {  // the RTL units' plugins first, in one parallel build
+    std::vector<RtlUnit> rtl_units;
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      if (backends[i] != Backend::rtl || !seen.insert(unit_path(*chosen[i])).second) continue;
+      rtl_units.push_back({unit_path(*chosen[i]), runs_user_rtl(i) ? &o.rtl : nullptr, o.rtl_top});
+    }
+    build_unit_plugins(rtl_units);
   }
   std::map<std::pair<std::string, Backend>, std::unique_ptr<Unit>> units;
   for (std::size_t i = 0; i < chosen.size(); ++i) {

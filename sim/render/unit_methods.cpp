@@ -21,6 +21,31 @@
 
 namespace phongsim::shading {
 
+namespace {
+
+// The design of a unit of `cfg`: phongsim's, or the user's `rtl` with top `top`.
+RtlDesign unit_design(const Config& cfg, const RtlSources* rtl, const std::string& top) {
+  const PipelineInfo& pipeline = find_pipeline(cfg.pipeline());
+  return rtl != nullptr ? rtl_design(pipeline, cfg, *rtl, top) : rtl_design(pipeline, cfg);
+}
+
+}  // namespace
+
+void build_unit_plugins(std::span<const RtlUnit> units) {
+  std::vector<Config> cfgs;
+  std::vector<std::unique_ptr<PipelineModel>> owned;
+  std::vector<RtlDesign> designs;
+  std::vector<const PipelineModel*> models;
+  cfgs.reserve(units.size());
+  for (const RtlUnit& u : units) {
+    cfgs.push_back(Config::load(u.config));
+    owned.push_back(make_model(find_pipeline(cfgs.back().pipeline()), cfgs.back()));
+    designs.push_back(unit_design(cfgs.back(), u.rtl, u.top));
+    models.push_back(owned.back().get());
+  }
+  (void)build_rtl(designs, models, stderr);
+}
+
 Unit::Unit(const std::filesystem::path& config, Backend backend, bool no_build,
            const RtlSources* rtl, const std::string& top)
     : cfg_(Config::load(config)),
@@ -29,9 +54,7 @@ Unit::Unit(const std::filesystem::path& config, Backend backend, bool no_build,
       rtl_name_("the RTL of " + cfg_.origin()),
       user_rtl_(rtl != nullptr) {
   if (backend == Backend::rtl) {
-    const PipelineInfo& pipeline = find_pipeline(cfg_.pipeline());
-    const RtlDesign design =
-        rtl != nullptr ? rtl_design(pipeline, cfg_, *rtl, top) : rtl_design(pipeline, cfg_);
+    const RtlDesign design = unit_design(cfg_, rtl, top);
     if (rtl != nullptr) rtl_name_ = fmt::format("your RTL ({}) with {}", design.top, cfg_.origin());
     const RtlPlugin plugin =
         locate_rtl(design, *model_, no_build ? RtlBuild::never : RtlBuild::if_missing, stderr);

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -53,6 +55,18 @@ class Unit {
   FrameCycles frame_;
   std::vector<FrameCycles> own_;
 };
+
+// A unit to be made through the RTL: its configuration, and the user's RTL and top (or none).
+struct RtlUnit {
+  std::filesystem::path config;
+  const RtlSources* rtl = nullptr;
+  std::string top;
+};
+
+// Verilates the plugins of `units` that are not cached yet, all in one parallel build (a line
+// each on stderr), so that a render waits for its plugins once, not one after another; the Units
+// then find them cached.
+void build_unit_plugins(std::span<const RtlUnit> units);
 
 // Each method's image and the frame's cycles on its unit.
 struct UnitImage {
