@@ -131,8 +131,9 @@ TEST_F(SynthTest, DepthOfAKnownDesign) {
   // Every level in tests/synth_tb/depth_tree.sv's header: a parity of 16 bits (4 levels, the
   // least two-input gates allow), an AND of 8 (3), a register in an instance (1), outputs.
   const fs::path tb = kSourceDir / "tests" / "synth_tb";
-  const phongsim::RtlDesign design{
-      "depth_tree", "depth_tree", {tb / "depth_tree_stage.sv", tb / "depth_tree.sv"}, {}, {}};
+  phongsim::RtlDesign design;
+  design.name = design.top = "depth_tree";
+  design.files = {tb / "depth_tree_stage.sv", tb / "depth_tree.sv"};
   const SynthResult r =
       synthesize(design, "depth_tree", SynthOptions{.generic = true, .ice40 = false}, stderr);
   EXPECT_EQ(r.depth, 4);
