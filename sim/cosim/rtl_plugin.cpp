@@ -239,10 +239,11 @@ Keyed key_of(const RtlDesign& d) {
   }
   ContentHash code;  // phongsim's side of the plugin
   for (const fs::path& header : adapter_headers()) {
-    h.add(header.string());
-    h.add(read_file(include_root() / header));
-    code.add(header.string());
-    code.add(read_file(include_root() / header));
+    const std::string text = read_file(include_root() / header);  // read once, hashed twice
+    for (ContentHash* into : {&h, &code}) {
+      into->add(header.string());
+      into->add(text);
+    }
   }
   // The key covers the adapter too; its text embeds the record, so hash what precedes it.
   const std::string adapter = adapter_source(d, "");
